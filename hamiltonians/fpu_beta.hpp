@@ -1,0 +1,43 @@
+#pragma once
+// Fermi-Pasta-Ulam-Tsingou beta chain with fixed ends (Fermi, Pasta & Ulam 1955,
+// Los Alamos report LA-1940): N unit masses, q_0 = q_{N+1} = 0,
+//     H = |p|^2/2 + sum_{i=0}^{N} [ r_i^2/2 + beta r_i^4/4 ],  r_i = q_{i+1} - q_i.
+#include <cmath>
+
+namespace sympl::hamiltonians {
+
+struct fpu_beta {
+    double beta = 1.0;
+
+    template <class V> auto kinetic(const V& p) const { return p.squaredNorm() / 2; }
+    template <class V> auto potential(const V& q) const {
+        using S = typename V::Scalar;
+        const Eigen::Index n = q.size();
+        S v(0);
+        for (Eigen::Index i = 0; i <= n; ++i) {
+            const S r = (i < n ? q[i] : S(0)) - (i > 0 ? q[i - 1] : S(0));
+            const S r2 = r * r;
+            v += r2 / 2 + r2 * r2 * (beta / 4);
+        }
+        return v;
+    }
+    template <class V> auto velocity(const V& p) const { return p * 1.0; }
+    // f_i = phi'(r_i) - phi'(r_{i-1}) with phi'(r) = r + beta r^3, r_i = q_{i+1} - q_i.
+    template <class V> void force(const V& q, V& f) const {
+        using S = typename V::Scalar;
+        const Eigen::Index n = q.size();
+        f.resize(n);
+        if (n == 0) return;
+        S left = q[0] + S(beta) * q[0] * q[0] * q[0];  // spring to the left wall: r = q_1 - 0
+        for (Eigen::Index i = 0; i + 1 < n; ++i) {
+            const S r = q[i + 1] - q[i];
+            const S right = r + S(beta) * r * r * r;
+            f[i] = right - left;
+            left = right;
+        }
+        const S r = -q[n - 1];  // spring to the right wall
+        f[n - 1] = (r + S(beta) * r * r * r) - left;
+    }
+};
+
+}  // namespace sympl::hamiltonians

@@ -1,0 +1,146 @@
+#pragma once
+// A separable Hamiltonian H(q, p) = T(p) + V(q) and Hamilton's equations
+// dq/dt = dT/dp, dp/dt = -dV/dq (seed 002, eqs. 3.71 and 3.73).
+//
+// A user type provides templated kinetic(p) and potential(q). It may also
+// provide the analytic gradients
+//     velocity(p)      -> dT/dp  (returning a vector or an Eigen expression), or
+//     velocity(p, v)   writing dT/dp into v;
+//     force(q, f)      writing -dV/dq into f, or
+//     force(q)         -> -dV/dq.
+// Whatever is missing is derived by forward-mode automatic differentiation of
+// kinetic/potential (dual.hpp), which costs about n evaluations of T or V per
+// gradient: give analytic gradients for large systems.
+#include <concepts>
+#include <string>
+#include <utility>
+
+#include <Eigen/Core>
+
+#include "dual.hpp"
+#include "error.hpp"
+#include "phase_space.hpp"
+
+namespace sympl {
+
+// Scalar of an Eigen vector type.
+template <class Vec>
+using scalar_of = typename Vec::Scalar;
+
+// The same vector shape with another scalar (used for dual numbers).
+template <class Vec, class S>
+using rebind_vector = Eigen::Matrix<S, Vec::RowsAtCompileTime, 1>;
+
+template <class H, class Vec>
+concept separable_hamiltonian = requires(const H& h, const Vec& x) {
+    { h.kinetic(x) } -> std::convertible_to<scalar_of<Vec>>;
+    { h.potential(x) } -> std::convertible_to<scalar_of<Vec>>;
+};
+
+template <class H, class Vec>
+concept has_force_into = requires(const H& h, const Vec& q, Vec& f) { h.force(q, f); };
+template <class H, class Vec>
+concept has_force_value = requires(const H& h, const Vec& q, Vec& f) { f = h.force(q); };
+template <class H, class Vec>
+concept has_velocity_into = requires(const H& h, const Vec& p, Vec& v) { h.velocity(p, v); };
+template <class H, class Vec>
+concept has_velocity_value = requires(const H& h, const Vec& p, Vec& v) { v.noalias() = h.velocity(p); };
+
+template <class H, class Vec>
+concept has_analytic_force = has_force_into<H, Vec> || has_force_value<H, Vec>;
+template <class H, class Vec>
+concept has_analytic_velocity = has_velocity_into<H, Vec> || has_velocity_value<H, Vec>;
+
+namespace detail {
+// Width of the dual numbers used to differentiate an n-dimensional function:
+// all directions at once for small fixed sizes, chunks of 8 otherwise.
+template <class Vec>
+constexpr int autodiff_width() {
+    constexpr int n = Vec::RowsAtCompileTime;
+    return (n != Eigen::Dynamic && n <= 16) ? n : 8;
+}
+
+// out = d fn / d x by forward mode, in chunks of W directions.
+// The dual workspace is reused across calls (no heap allocation once sized).
+template <class Vec, class Fn>
+void gradient(const Fn& fn, const Vec& x, Vec& out) {
+    using S = scalar_of<Vec>;
+    constexpr int W = autodiff_width<Vec>();
+    using D = dual<S, W>;
+    using DVec = rebind_vector<Vec, D>;
+    thread_local DVec xd;
+    const Eigen::Index n = x.size();
+    if (xd.size() != n) xd.resize(n);
+    if (out.size() != n) out.resize(n);
+    for (Eigen::Index i = 0; i < n; ++i) xd[i] = D(x[i]);
+    for (Eigen::Index start = 0; start < n; start += W) {
+        const Eigen::Index width = std::min<Eigen::Index>(W, n - start);
+        for (Eigen::Index k = 0; k < width; ++k) xd[start + k].grad[k] = S(1);
+        const D y = fn(xd);
+        for (Eigen::Index k = 0; k < width; ++k) {
+            out[start + k] = y.grad[k];
+            xd[start + k].grad[k] = S(0);
+        }
+    }
+}
+}  // namespace detail
+
+// f = -dV/dq (seed eq. 3.73a), analytic when H provides it.
+template <class H, class Vec>
+    requires separable_hamiltonian<H, Vec>
+void force(const H& h, const Vec& q, Vec& f) {
+    if constexpr (has_force_into<H, Vec>) {
+        h.force(q, f);
+    } else if constexpr (has_force_value<H, Vec>) {
+        f = h.force(q);
+    } else {
+        detail::gradient([&h](const auto& x) { return h.potential(x); }, q, f);
+        f = -f;
+    }
+}
+
+// v = dT/dp (seed eq. 3.73b), analytic when H provides it.
+template <class H, class Vec>
+    requires separable_hamiltonian<H, Vec>
+void velocity(const H& h, const Vec& p, Vec& v) {
+    if constexpr (has_velocity_into<H, Vec>) {
+        h.velocity(p, v);
+    } else if constexpr (has_velocity_value<H, Vec>) {
+        v.noalias() = h.velocity(p);
+    } else {
+        detail::gradient([&h](const auto& x) { return h.kinetic(x); }, p, v);
+    }
+}
+
+// Total energy H(q, p) = T(p) + V(q) (seed eq. 3.71).
+template <class H, class S, int D>
+    requires separable_hamiltonian<H, typename phase_space<S, D>::vector>
+S energy(const H& h, const phase_space<S, D>& x) {
+    return S(h.kinetic(x.p)) + S(h.potential(x.q));
+}
+
+// Right-hand side of Hamilton's equations (seed eq. 3.73) for any other
+// integrator: dxdt.q = dT/dp, dxdt.p = -dV/dq.
+template <class H, class S, int D>
+    requires separable_hamiltonian<H, typename phase_space<S, D>::vector>
+void hamilton_rhs(const H& h, const phase_space<S, D>& x, phase_space<S, D>& dxdt) {
+    velocity(h, x.p, dxdt.q);
+    force(h, x.q, dxdt.p);
+}
+
+// A Hamiltonian from two generic lambdas, T(p) and V(q):
+//   auto h = sympl::make_hamiltonian([](const auto& p) { return 0.5 * p.squaredNorm(); },
+//                                    [](const auto& q) { using std::cos; return -cos(q[0]); });
+template <class Kinetic, class Potential>
+struct lambda_hamiltonian {
+    Kinetic T;
+    Potential V;
+    template <class Vec> auto kinetic(const Vec& p) const { return T(p); }
+    template <class Vec> auto potential(const Vec& q) const { return V(q); }
+};
+template <class Kinetic, class Potential>
+lambda_hamiltonian<Kinetic, Potential> make_hamiltonian(Kinetic T, Potential V) {
+    return {std::move(T), std::move(V)};
+}
+
+}  // namespace sympl

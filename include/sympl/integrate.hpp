@@ -1,0 +1,186 @@
+#pragma once
+// The driver: n steps, or up to t_end, with an optional observer.
+//
+// Times are t = t0 + i*dt, never accumulated, and integrate_until lands exactly
+// on t_end (the last step is shortened when dt does not divide the span). The
+// state is checked for non-finite values every `check_every` steps; on a
+// blow-up the run is replayed from the last finite checkpoint one step at a
+// time, the state is left at the last finite step, and integration_error names
+// the step and time. With no observer, nothing is recorded.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <type_traits>
+#include <utility>
+#include <sstream>
+#include <string>
+
+#include "dual.hpp"
+#include "error.hpp"
+#include "phase_space.hpp"
+
+namespace sympl {
+
+// Anything with step(x, dt); steps(x, dt, n) is used when present.
+template <class S>
+concept fixed_step_stepper = requires(S s, typename S::state_type& x, typename S::scalar dt) {
+    s.step(x, dt);
+};
+
+struct no_observer {
+    template <class State, class T>
+    void operator()(const State&, T) const {}
+};
+
+struct run_options {
+    std::size_t observe_every = 1;  // observer called at t0, every k steps, and at the end
+    std::size_t check_every = 64;   // finiteness check interval (steps)
+};
+
+struct run_summary {
+    std::size_t steps = 0;              // steps taken (a shortened last step counts as one)
+    double t = 0;                       // time reached
+    std::uint64_t force_evaluations = 0;
+    std::uint64_t velocity_evaluations = 0;
+};
+
+namespace detail {
+template <class T>
+std::string number(T v) {
+    std::ostringstream s;
+    s.precision(17);
+    s << static_cast<long double>(primal(v));
+    return s.str();
+}
+
+// `resume`: x is exactly what the stepper left, so it may carry its last force over.
+template <class Stepper, class State>
+void advance(Stepper& s, State& x, typename Stepper::scalar dt, std::size_t n, bool resume) {
+    if constexpr (requires { s.resume_steps(x, dt, n); }) {
+        if (resume) return s.resume_steps(x, dt, n);
+    }
+    if constexpr (requires { s.steps(x, dt, n); })
+        s.steps(x, dt, n);
+    else
+        for (std::size_t i = 0; i < n; ++i) s.step(x, dt);
+}
+
+template <class Stepper>
+std::uint64_t forces(const Stepper& s) {
+    if constexpr (requires { s.force_evaluations(); }) return s.force_evaluations(); else return 0;
+}
+template <class Stepper>
+std::uint64_t velocities(const Stepper& s) {
+    if constexpr (requires { s.velocity_evaluations(); }) return s.velocity_evaluations(); else return 0;
+}
+
+// `n` steps of size dt from step index `first` (time t0 + first*dt), checked.
+template <class Stepper, class State, class T>
+void checked_steps(Stepper& s, State& x, State& checkpoint, T t0, T dt, std::size_t first, std::size_t n,
+                   std::size_t check_every) {
+    std::size_t done = 0;
+    while (done < n) {
+        const std::size_t m = std::min(check_every, n - done);
+        checkpoint = x;
+        advance(s, x, dt, m, first + done > 0);
+        if (!is_finite(x)) {
+            x = checkpoint;  // replay one step at a time to find the first bad step
+            for (std::size_t j = 0; j < m; ++j) {
+                State before = x;
+                s.step(x, dt);
+                if (!is_finite(x)) {
+                    x = before;
+                    const std::size_t bad = first + done + j + 1;
+                    const T t_bad = t0 + T(bad - 1) * dt;
+                    throw integration_error("integration blew up: step " + std::to_string(bad) + " (from t = " +
+                                                number(t_bad) + " with dt = " + number(dt) +
+                                                ") produced a non-finite state; the state is left at t = " +
+                                                number(t_bad),
+                                            bad, static_cast<double>(primal(t_bad)));
+                }
+            }
+        }
+        done += m;
+    }
+}
+
+template <class T>
+void check_dt(T dt, const char* who) {
+    using std::isfinite;
+    if (!isfinite(dt) || !(dt > T(0)))
+        throw invalid_argument(std::string(who) + ": dt = " + number(dt) + "; expected a finite step size > 0");
+}
+}  // namespace detail
+
+// n steps of size dt from time t0. observer(state, t) is called at t0, after
+// every options.observe_every steps, and after the last step.
+template <fixed_step_stepper Stepper, class Observer = no_observer>
+run_summary integrate_steps(Stepper& stepper, typename Stepper::state_type& x, typename Stepper::scalar t0,
+                            typename Stepper::scalar dt, std::size_t n, Observer&& observer = {},
+                            run_options options = {}) {
+    using T = typename Stepper::scalar;
+    using State = typename Stepper::state_type;
+    detail::check_dt(dt, "integrate_steps");
+    if (options.observe_every == 0 || options.check_every == 0)
+        throw invalid_argument("integrate_steps: observe_every = " + std::to_string(options.observe_every) +
+                               ", check_every = " + std::to_string(options.check_every) + "; expected both >= 1");
+    if (!is_finite(x)) throw invalid_argument("integrate_steps: the initial state is not finite; expected finite q and p");
+    const auto f0 = detail::forces(stepper);
+    const auto v0 = detail::velocities(stepper);
+    constexpr bool observed = !std::is_same_v<std::decay_t<Observer>, no_observer>;
+    State checkpoint = x;
+    if constexpr (observed) observer(std::as_const(x), t0);
+    std::size_t done = 0;
+    while (done < n) {
+        const std::size_t m = observed ? std::min(options.observe_every, n - done) : n - done;
+        detail::checked_steps(stepper, x, checkpoint, t0, dt, done, m, options.check_every);
+        done += m;
+        if constexpr (observed) observer(std::as_const(x), t0 + T(done) * dt);
+    }
+    return {n, static_cast<double>(primal(t0 + T(n) * dt)), detail::forces(stepper) - f0,
+            detail::velocities(stepper) - v0};
+}
+
+// From t0 up to exactly t_end with steps of dt (the last one shortened if needed).
+template <fixed_step_stepper Stepper, class Observer = no_observer>
+run_summary integrate_until(Stepper& stepper, typename Stepper::state_type& x, typename Stepper::scalar t0,
+                            typename Stepper::scalar t_end, typename Stepper::scalar dt, Observer&& observer = {},
+                            run_options options = {}) {
+    using T = typename Stepper::scalar;
+    using State = typename Stepper::state_type;
+    using std::isfinite;
+    using std::floor;
+    detail::check_dt(dt, "integrate_until");
+    if (!isfinite(t0) || !isfinite(t_end) || !(t_end > t0))
+        throw invalid_argument("integrate_until: t_end = " + detail::number(t_end) + " with t0 = " + detail::number(t0) +
+                               "; expected finite times with t_end > t0");
+    const T span = t_end - t0;
+    auto n = static_cast<std::size_t>(floor(span / dt));
+    T rest = span - T(n) * dt;
+    // A remainder at roundoff level means dt divides the span.
+    if (rest <= T(8) * std::numeric_limits<double>::epsilon() * span) rest = T(0);
+    if (n == 0 && rest == T(0)) n = 1;
+    const auto f0 = detail::forces(stepper);
+    const auto v0 = detail::velocities(stepper);
+    run_summary r = integrate_steps(stepper, x, t0, dt, n, observer, options);
+    if (rest > T(0)) {
+        State last = x;
+        stepper.step(x, rest);
+        if (!is_finite(x)) {
+            x = last;
+            throw integration_error("integration blew up: the final step " + std::to_string(n + 1) + " (from t = " +
+                                        detail::number(t0 + T(n) * dt) + " with dt = " + detail::number(rest) +
+                                        ") produced a non-finite state",
+                                    n + 1, static_cast<double>(primal(t0 + T(n) * dt)));
+        }
+        ++r.steps;
+        if constexpr (!std::is_same_v<std::decay_t<Observer>, no_observer>) observer(std::as_const(x), t_end);
+    }
+    r.force_evaluations = detail::forces(stepper) - f0;
+    r.velocity_evaluations = detail::velocities(stepper) - v0;
+    r.t = static_cast<double>(primal(t_end));
+    return r;
+}
+
+}  // namespace sympl

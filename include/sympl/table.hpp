@@ -1,0 +1,356 @@
+#pragma once
+// A splitting method as data (seed 002, eq. 3.74).
+//
+// The convention, stated once: a table of M stages advances (q, p) by dt as
+//     for k = 0 .. M-1:
+//         p += kick[k]  * dt * force(q)       // force    = -dV/dq
+//         q += drift[k] * dt * velocity(p)    // velocity =  dT/dp
+// with sum(kick) = sum(drift) = 1. A drift-first method has kick[0] = 0; a
+// method that ends on a kick has drift[M-1] = 0.
+//
+// The seed writes the same scheme with M sub-steps delta_t = dt/M and
+// coefficients a_k (kick), b_k (drift) that sum to M: from_seed() converts.
+// Boost.Odeint's symplectic_rkn steppers are drift-first and call their drift
+// coefficients `a` and their kick coefficients `b`: from_drift_first()
+// converts. Coefficients are always given by role, never by letter.
+//
+// Every table is kept in canonical form: adjacent sub-steps of the same kind
+// are merged and zero sub-steps removed, so no force is evaluated in vain.
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <numeric>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "error.hpp"
+
+namespace sympl {
+
+using coefficient = long double;  // tables keep ~19 digits; steppers round to their scalar
+
+// Which Hamiltonians a method keeps its order on.
+enum class kinetic_requirement {
+    any,        // any separable H = T(p) + V(q)
+    quadratic,  // Runge-Kutta-Nystrom only: T(p) = p.M^-1.p / 2; lower order otherwise
+};
+
+// One sub-step of a method: a kick (p) or a drift (q) by weight * dt.
+struct substep {
+    enum kind_t { kick, drift } kind;
+    coefficient weight;
+};
+
+namespace detail {
+inline std::string format_coefficient(coefficient c) {
+    std::ostringstream s;
+    s.precision(21);
+    s << c;
+    return s.str();
+}
+
+// Merge neighbours of the same kind and drop zero weights (repeat until stable:
+// dropping a zero drift can make two kicks adjacent).
+inline std::vector<substep> canonical(std::vector<substep> ops) {
+    std::vector<substep> out;
+    out.reserve(ops.size());
+    for (const substep& s : ops) {
+        if (s.weight == 0) continue;
+        if (!out.empty() && out.back().kind == s.kind) {
+            out.back().weight += s.weight;
+            if (out.back().weight == 0) out.pop_back();
+        } else {
+            out.push_back(s);
+        }
+    }
+    return out;
+}
+}  // namespace detail
+
+class table {
+public:
+    // Validates (lengths, finiteness, sums) and stores the canonical form.
+    // Throws invalid_table with a message naming the table, the bad value and
+    // what was expected.
+    table(std::string name, std::vector<coefficient> kick, std::vector<coefficient> drift, int order = 0,
+          std::string citation = {}, kinetic_requirement requirement = kinetic_requirement::any)
+        : name_(std::move(name)), order_(order), citation_(std::move(citation)), requirement_(requirement) {
+        validate(kick, drift);
+        set_substeps(to_substeps(kick, drift));
+    }
+
+    // A table from a sequence of sub-steps (composition builds these).
+    static table from_substeps(std::string name, const std::vector<substep>& ops, int order, std::string citation,
+                               kinetic_requirement requirement) {
+        std::vector<coefficient> kick, drift;
+        split(detail::canonical(ops), kick, drift);
+        return table(std::move(name), std::move(kick), std::move(drift), order, std::move(citation), requirement);
+    }
+
+    const std::string& name() const { return name_; }
+    const std::vector<coefficient>& kick() const { return kick_; }
+    const std::vector<coefficient>& drift() const { return drift_; }
+    // Claimed order (0 when unknown, e.g. a user's table); measure_order() checks it.
+    int order() const { return order_; }
+    const std::string& citation() const { return citation_; }
+    kinetic_requirement requirement() const { return requirement_; }
+    bool needs_quadratic_kinetic() const { return requirement_ == kinetic_requirement::quadratic; }
+
+    std::size_t stages() const { return kick_.size(); }
+
+    // Alternating kick/drift sub-steps of one step, zero ones left out.
+    std::vector<substep> substeps() const { return to_substeps(kick_, drift_); }
+
+    // Force evaluations per step in a long run: one per non-zero kick, less
+    // one when the step ends on a kick and starts with one (the last force is
+    // reused by the next step, so leapfrog KDK costs one).
+    std::size_t force_evaluations() const {
+        std::size_t n = 0;
+        for (coefficient k : kick_) n += (k != 0);
+        if (kick_.front() != 0 && drift_.back() == 0 && n > 1) --n;
+        return n;
+    }
+    // Velocity evaluations per step, counted the same way.
+    std::size_t velocity_evaluations() const {
+        std::size_t n = 0;
+        for (coefficient d : drift_) n += (d != 0);
+        if (kick_.front() == 0 && drift_.back() != 0 && n > 1) --n;
+        return n;
+    }
+
+    // Symmetric (self-adjoint): the sub-steps read the same backwards.
+    bool is_symmetric(coefficient tolerance = 1e-14L) const {
+        const auto ops = substeps();
+        for (std::size_t i = 0, j = ops.size() - 1; i < ops.size(); ++i, --j)
+            if (ops[i].kind != ops[j].kind || std::fabs(ops[i].weight - ops[j].weight) > tolerance) return false;
+        return true;
+    }
+
+    // Linear stability interval: the largest h = omega*dt such that the
+    // one-step propagator of the harmonic oscillator (T = p^2/2, V = omega^2 q^2/2)
+    // is stable, |trace| < 2, for all omega*dt in (0, h). 0 if none.
+    double stability_interval() const {
+        auto trace = [this](long double h) {
+            // Propagator of (q, p) for one step; kick: p -= c h q, drift: q += c h p (omega = 1).
+            long double a = 1, b = 0, c = 0, d = 1;  // [[a b][c d]] maps (q,p) -> (q,p)
+            for (const substep& s : substeps()) {
+                if (s.kind == substep::kick) { c -= s.weight * h * a; d -= s.weight * h * b; }
+                else { a += s.weight * h * c; b += s.weight * h * d; }
+            }
+            return a + d;
+        };
+        const long double step = 1e-3L;
+        const long double limit = 8.0L * static_cast<long double>(stages()) + 8.0L;
+        long double h = step;
+        for (; h < limit; h += step)
+            if (std::fabs(trace(h)) >= 2) break;
+        if (h >= limit) return static_cast<double>(limit);
+        long double lo = h - step, hi = h;
+        for (int i = 0; i < 60; ++i) {
+            const long double mid = (lo + hi) / 2;
+            (std::fabs(trace(mid)) >= 2 ? hi : lo) = mid;
+        }
+        return static_cast<double>(lo);
+    }
+
+    bool operator==(const table& o) const { return kick_ == o.kick_ && drift_ == o.drift_; }
+
+private:
+    static std::vector<substep> to_substeps(const std::vector<coefficient>& kick, const std::vector<coefficient>& drift) {
+        std::vector<substep> ops;
+        ops.reserve(2 * kick.size());
+        for (std::size_t k = 0; k < kick.size(); ++k) {
+            ops.push_back({substep::kick, kick[k]});
+            ops.push_back({substep::drift, drift[k]});
+        }
+        return detail::canonical(std::move(ops));
+    }
+
+    // Canonical sub-steps -> kick-first stages (kick[0] = 0 if drift comes first).
+    static void split(const std::vector<substep>& ops, std::vector<coefficient>& kick, std::vector<coefficient>& drift) {
+        kick.clear();
+        drift.clear();
+        for (const substep& s : ops) {
+            if (s.kind == substep::kick) {
+                kick.push_back(s.weight);
+                drift.push_back(0);
+            } else {
+                if (kick.empty()) { kick.push_back(0); drift.push_back(0); }
+                drift.back() = s.weight;
+            }
+        }
+    }
+
+    void set_substeps(const std::vector<substep>& ops) { split(ops, kick_, drift_); }
+
+    void validate(const std::vector<coefficient>& kick, const std::vector<coefficient>& drift) const {
+        const std::string who = "table '" + name_ + "': ";
+        if (kick.empty() || kick.size() != drift.size())
+            throw invalid_table(who + "kick has " + std::to_string(kick.size()) + " coefficients and drift has " +
+                                std::to_string(drift.size()) + "; expected equal lengths of at least 1");
+        auto check = [&](const std::vector<coefficient>& c, const char* role) {
+            for (std::size_t i = 0; i < c.size(); ++i)
+                if (!std::isfinite(c[i]))
+                    throw invalid_table(who + role + "[" + std::to_string(i) + "] = " + detail::format_coefficient(c[i]) +
+                                        "; expected a finite coefficient");
+            const coefficient sum = std::accumulate(c.begin(), c.end(), coefficient(0));
+            if (std::fabs(sum - 1) > 1e-14L)
+                throw invalid_table(who + "sum(" + role + ") = " + detail::format_coefficient(sum) +
+                                    "; expected 1 within 1e-14");
+        };
+        check(kick, "kick");
+        check(drift, "drift");
+        if (order_ < 0)
+            throw invalid_table(who + "order = " + std::to_string(order_) + "; expected >= 0 (0 = unknown)");
+    }
+
+    std::string name_;
+    std::vector<coefficient> kick_, drift_;
+    int order_;
+    std::string citation_;
+    kinetic_requirement requirement_;
+};
+
+// ---- Conversions ------------------------------------------------------------
+
+// From the seed's convention (seed 002, eq. 3.74): M sub-steps of delta_t = dt/M
+// with kick coefficients a_k and drift coefficients b_k summing to M.
+// Verlet is M = 2, a = (1, 1), b = (2, 0) (seed eq. 3.75).
+inline table from_seed(std::string name, const std::vector<coefficient>& a, const std::vector<coefficient>& b,
+                       int order = 0, std::string citation = {},
+                       kinetic_requirement requirement = kinetic_requirement::any) {
+    const auto M = static_cast<coefficient>(a.size());
+    if (a.empty() || a.size() != b.size())
+        throw invalid_table("table '" + name + "': a has " + std::to_string(a.size()) + " coefficients and b has " +
+                            std::to_string(b.size()) + "; expected M >= 1 of each (seed eq. 3.74)");
+    auto scaled = [M](std::vector<coefficient> c) {
+        for (auto& x : c) x /= M;
+        return c;
+    };
+    for (const auto* c : {&a, &b}) {
+        const coefficient sum = std::accumulate(c->begin(), c->end(), coefficient(0));
+        if (std::isfinite(sum) && std::fabs(sum - M) > 1e-14L * M)
+            throw invalid_table("table '" + name + "': sum(" + (c == &a ? "a" : "b") + ") = " +
+                                detail::format_coefficient(sum) + "; expected M = " + detail::format_coefficient(M) +
+                                " (seed eq. 3.74)");
+    }
+    return table(std::move(name), scaled(a), scaled(b), order, std::move(citation), requirement);
+}
+
+// From a drift-first table: q += drift[k] dt velocity(p), then p += kick[k] dt force(q).
+// (Boost.Odeint's symplectic_rkn steppers: their `a` are drifts, their `b` kicks.)
+inline table from_drift_first(std::string name, const std::vector<coefficient>& drift,
+                              const std::vector<coefficient>& kick, int order = 0, std::string citation = {},
+                              kinetic_requirement requirement = kinetic_requirement::any) {
+    if (drift.empty() || drift.size() != kick.size())
+        throw invalid_table("table '" + name + "': drift has " + std::to_string(drift.size()) +
+                            " coefficients and kick has " + std::to_string(kick.size()) +
+                            "; expected equal lengths of at least 1");
+    std::vector<coefficient> k(1, 0), d(drift);
+    k.insert(k.end(), kick.begin(), kick.end());
+    d.push_back(0);
+    return table(std::move(name), std::move(k), std::move(d), order, std::move(citation), requirement);
+}
+
+// ---- Composition --------------------------------------------------------------
+
+namespace detail {
+inline kinetic_requirement stricter(kinetic_requirement a, kinetic_requirement b) {
+    return (a == kinetic_requirement::quadratic || b == kinetic_requirement::quadratic) ? kinetic_requirement::quadratic
+                                                                                         : kinetic_requirement::any;
+}
+inline void append_scaled(std::vector<substep>& ops, const table& t, coefficient w) {
+    for (substep s : t.substeps()) {
+        s.weight *= w;
+        ops.push_back(s);
+    }
+}
+}  // namespace detail
+
+// The adjoint method Phi*_dt = (Phi_{-dt})^{-1}: the sub-steps in reverse order.
+// Same order; a method is symmetric when it equals its adjoint.
+inline table adjoint(const table& t) {
+    auto ops = t.substeps();
+    std::reverse(ops.begin(), ops.end());
+    const bool self = t.is_symmetric();
+    return table::from_substeps(self ? t.name() : "adjoint(" + t.name() + ")", ops, t.order(), t.citation(),
+                                t.requirement());
+}
+
+// Method a for the fraction `fraction` of the step, then b for the rest.
+inline table concatenate(const table& a, const table& b, coefficient fraction = 0.5L) {
+    if (!std::isfinite(fraction) || fraction <= 0 || fraction >= 1)
+        throw invalid_argument("concatenate: fraction = " + detail::format_coefficient(fraction) +
+                               "; expected a number strictly between 0 and 1");
+    std::vector<substep> ops;
+    detail::append_scaled(ops, a, fraction);
+    detail::append_scaled(ops, b, 1 - fraction);
+    const int order = (a.order() == 0 || b.order() == 0) ? 0 : std::min(a.order(), b.order());
+    return table::from_substeps(a.name() + "+" + b.name(), ops, order, {}, detail::stricter(a.requirement(), b.requirement()));
+}
+
+// base(w_1 dt) o base(w_2 dt) o ... : the weights must sum to 1. `order` is the
+// order the composition is claimed to reach (0 = unknown).
+inline table compose(const table& base, const std::vector<coefficient>& weights, std::string name = {}, int order = 0,
+                     std::string citation = {}) {
+    if (weights.empty())
+        throw invalid_argument("compose: no weights given; expected at least one weight summing to 1");
+    coefficient sum = 0;
+    for (std::size_t i = 0; i < weights.size(); ++i) {
+        if (!std::isfinite(weights[i]) || weights[i] == 0)
+            throw invalid_argument("compose: weight[" + std::to_string(i) + "] = " +
+                                   detail::format_coefficient(weights[i]) + "; expected a finite non-zero weight");
+        sum += weights[i];
+    }
+    if (std::fabs(sum - 1) > 1e-14L)
+        throw invalid_argument("compose: weights sum to " + detail::format_coefficient(sum) + "; expected 1 within 1e-14");
+    std::vector<substep> ops;
+    for (coefficient w : weights) detail::append_scaled(ops, base, w);
+    if (name.empty()) name = "compose(" + base.name() + ", " + std::to_string(weights.size()) + ")";
+    return table::from_substeps(std::move(name), ops, order, std::move(citation), base.requirement());
+}
+
+// Symmetric composition from the outer half of the weights and the centre:
+// (w_m, ..., w_1, w_0, w_1, ..., w_m) with w_0 = 1 - 2 sum(w_i), the form in
+// which Yoshida 1990, McLachlan 1995, Kahan-Li 1997 and Sofroniou-Spaletta 2005
+// publish their constants (`outer` lists w_m first).
+inline table compose_symmetric(const table& base, const std::vector<coefficient>& outer, std::string name, int order,
+                               std::string citation) {
+    std::vector<coefficient> w(outer);
+    const coefficient centre = 1 - 2 * std::accumulate(outer.begin(), outer.end(), coefficient(0));
+    w.push_back(centre);
+    w.insert(w.end(), outer.rbegin(), outer.rend());
+    return compose(base, w, std::move(name), order, std::move(citation));
+}
+
+namespace detail {
+inline int raisable_order(const table& base, const char* who) {
+    if (!base.is_symmetric() || base.order() < 2 || base.order() % 2 != 0)
+        throw invalid_argument(std::string(who) + ": table '" + base.name() + "' has order " +
+                               std::to_string(base.order()) + (base.is_symmetric() ? "" : " and is not symmetric") +
+                               "; expected a symmetric method of known even order");
+    return base.order();
+}
+}  // namespace detail
+
+// Symmetric triple jump (Yoshida 1990, eq. 5.4; Forest-Ruth 1990, Candy-Rozmus 1991):
+// order 2k -> 2k+2 with gamma = 1 / (2 - 2^(1/(2k+1))).
+inline table triple_jump(const table& base) {
+    const int p = detail::raisable_order(base, "triple_jump");
+    const coefficient g = 1 / (2 - std::pow(2.0L, 1.0L / (p + 1)));
+    return compose(base, {g, 1 - 2 * g, g}, "triple_jump(" + base.name() + ")", p + 2,
+                   "Yoshida 1990, Phys. Lett. A 150, 262");
+}
+
+// Suzuki's 5-fold composition (Suzuki 1990, Phys. Lett. A 146, 319):
+// order 2k -> 2k+2 with gamma = 1 / (4 - 4^(1/(2k+1))).
+inline table suzuki_fractal(const table& base) {
+    const int p = detail::raisable_order(base, "suzuki_fractal");
+    const coefficient g = 1 / (4 - std::pow(4.0L, 1.0L / (p + 1)));
+    return compose(base, {g, g, 1 - 4 * g, g, g}, "suzuki_fractal(" + base.name() + ")", p + 2,
+                   "Suzuki 1990, Phys. Lett. A 146, 319");
+}
+
+}  // namespace sympl

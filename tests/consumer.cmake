@@ -1,0 +1,16 @@
+# Installs sympl into a scratch prefix and builds examples/ as an outside
+# project that only does find_package(sympl) and links sympl::sympl.
+file(REMOVE_RECURSE ${WORK})
+set(prefix ${WORK}/prefix)
+foreach(step
+    "${CMAKE_COMMAND};-S;${SOURCE};-B;${WORK}/sympl;-DSYMPL_BUILD_TESTS=OFF;-DSYMPL_BUILD_BENCH=OFF;-DSYMPL_BUILD_PROGRAM=OFF;-DCMAKE_INSTALL_PREFIX=${prefix}"
+    "${CMAKE_COMMAND};--install;${WORK}/sympl"
+    "${CMAKE_COMMAND};-S;${SOURCE}/examples;-B;${WORK}/examples;-DCMAKE_PREFIX_PATH=${prefix}"
+    "${CMAKE_COMMAND};--build;${WORK}/examples;--target;quickstart;-j2"
+    "${WORK}/examples/quickstart")
+  execute_process(COMMAND ${step} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "step failed (${rc}): ${step}\n${out}\n${err}")
+  endif()
+endforeach()
+message(STATUS "example built against the installed package and ran:\n${out}")

@@ -1,0 +1,182 @@
+// The whole catalog, entry by entry: an entry that fails here does not ship.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numeric>
+
+#include <sympl/sympl.hpp>
+#include <sympl/hamiltonians/pendulum.hpp>
+
+using namespace sympl;
+
+namespace {
+using V1 = Eigen::Matrix<double, 1, 1>;
+using State1 = phase_space<double, 1>;
+
+// Measured order within 0.15 of the claim (the house threshold).
+void check_order(const table& t, order_problem problem, int expected) {
+    const order_measurement m = measure_order(t, problem);
+    CAPTURE(to_string(problem));
+    CAPTURE(m.order);
+    CHECK(std::fabs(m.order - expected) <= 0.15);
+}
+}  // namespace
+
+TEST_CASE("catalog: coefficient sums are 1 and every entry has a citation") {
+    for (const table& t : catalog()) {
+        CAPTURE(t.name());
+        const coefficient ks = std::accumulate(t.kick().begin(), t.kick().end(), coefficient(0));
+        const coefficient ds = std::accumulate(t.drift().begin(), t.drift().end(), coefficient(0));
+        CHECK(std::fabs(static_cast<double>(ks - 1)) <= 1e-14);
+        CHECK(std::fabs(static_cast<double>(ds - 1)) <= 1e-14);
+        CHECK(t.order() >= 1);
+        CHECK(t.citation().size() > 10);
+    }
+}
+
+TEST_CASE("catalog: measured order on the pendulum and Kepler (quadratic T)") {
+    for (const table& t : catalog()) {
+        CAPTURE(t.name());
+        check_order(t, order_problem::pendulum, t.order());
+        check_order(t, order_problem::kepler, t.order());
+    }
+}
+
+TEST_CASE("catalog: measured order with non-quadratic kinetic energy") {
+    // Methods not flagged RKN-only keep their order for T = sqrt(1 + p^2);
+    // the flagged ones must really lose it (else the flag is wrong).
+    for (const table& t : catalog()) {
+        CAPTURE(t.name());
+        if (!t.needs_quadratic_kinetic()) {
+            check_order(t, order_problem::nonquadratic_kinetic, t.order());
+        } else {
+            const double o = measure_order(t, order_problem::nonquadratic_kinetic).order;
+            CAPTURE(o);
+            CHECK(o < t.order() - 0.5);
+        }
+    }
+}
+
+TEST_CASE("catalog: symmetric methods retrace their steps, step(dt) then step(-dt)") {
+    for (const table& t : catalog()) {
+        if (!t.is_symmetric()) continue;
+        CAPTURE(t.name());
+        splitting_stepper<hamiltonians::pendulum, State1> s({}, t);
+        const State1 x0(V1(1.1), V1(-0.4));
+        State1 x = x0;
+        for (int i = 0; i < 10; ++i) s.step(x, 0.1);
+        for (int i = 0; i < 10; ++i) s.step(x, -0.1);
+        CHECK(max_difference(x, x0) <= 1e-13);
+    }
+}
+
+TEST_CASE("catalog: adjoint(adjoint(t)) == t, and symmetric entries are their own adjoint") {
+    for (const table& t : catalog()) {
+        CAPTURE(t.name());
+        CHECK(adjoint(adjoint(t)) == t);
+        if (t.is_symmetric()) CHECK(adjoint(t) == t);
+    }
+}
+
+TEST_CASE("catalog: the seed's Verlet table is velocity Verlet") {
+    // seed 002 eq. 3.75: M = 2, a = (1, 1), b = (2, 0) reduces to eq. 3.48.
+    CHECK(method("verlet_seed") == method("leapfrog_kdk"));
+    splitting_stepper<hamiltonians::pendulum, State1> seed({}, method("verlet_seed"));
+    State1 x(V1(1.0), V1(0.2)), y = x;
+    seed.steps(x, 0.05, 100);
+    const auto verlet_by_hand = [](State1& s, double dt) {  // seed 000 eq. 3.48
+        const double a0 = -std::sin(s.q[0]);
+        s.q[0] += s.p[0] * dt + 0.5 * a0 * dt * dt;
+        s.p[0] += 0.5 * (a0 - std::sin(s.q[0])) * dt;
+    };
+    for (int i = 0; i < 100; ++i) verlet_by_hand(y, 0.05);
+    CHECK(max_difference(x, y) <= 1e-13);
+}
+
+TEST_CASE("catalog: symplectic methods show no energy drift over 1e5 pendulum steps") {
+    // A symplectic method's energy error stays bounded: its largest excursion in
+    // the last tenth of the run is no larger than in the first tenth (a drifting
+    // method grows ~10x). dt is chosen per method so that the energy error sits
+    // between 1e-10 and 1e-4, far above roundoff.
+    const hamiltonians::pendulum h;
+    const State1 x0(V1(2.0), V1(0.0));
+    const double e0 = energy(h, x0);
+    for (const table& t : catalog()) {
+        CAPTURE(t.name());
+        splitting_stepper<hamiltonians::pendulum, State1> s(h, t);
+        double dt = 0.5 * t.stability_interval();
+        for (;; dt /= 2) {
+            State1 x = x0;
+            double worst = 0;
+            for (int i = 0; i < 200; ++i) {
+                s.step(x, dt);
+                worst = std::max(worst, std::fabs(energy(h, x) - e0));
+            }
+            if (worst < 1e-4) break;
+        }
+        CAPTURE(dt);
+        const int n = 100000;
+        double first = 0, last = 0;
+        State1 x = x0;
+        for (int i = 1; i <= n; ++i) {
+            s.steps(x, dt, 1);
+            const double err = std::fabs(energy(h, x) - e0);
+            if (i <= n / 10) first = std::max(first, err);
+            if (i > n - n / 10) last = std::max(last, err);
+        }
+        CAPTURE(first);
+        CAPTURE(last);
+        CHECK(last <= 1.5 * first + 1e-13);
+    }
+    // The same criterion catches a method that drifts: explicit Euler.
+    State1 x = x0;
+    double first = 0, last = 0;
+    for (int i = 1; i <= 100000; ++i) {
+        const double q = x.q[0];
+        x.q[0] += 1e-3 * x.p[0];
+        x.p[0] -= 1e-3 * std::sin(q);
+        const double err = std::fabs(energy(h, x) - e0);
+        if (i <= 10000) first = std::max(first, err);
+        if (i > 90000) last = std::max(last, err);
+    }
+    CHECK(last > 1.5 * first);
+}
+
+TEST_CASE("catalog: composition weights match the published centre weight") {
+    // compose_symmetric computes the centre as 1 - 2*sum(outer); each paper
+    // prints it too, so this checks every outer digit as typed.
+    struct published {
+        const char* name;
+        long double centre;
+        double tolerance;  // the published digits
+    };
+    const published rows[] = {
+        {"yoshida_6", 1.315186320683911218884249728238862514352L, 1e-18},     // Yoshida 1990, solution A
+        {"yoshida_8", 1.7084530707869978L, 1e-14},                            // Yoshida 1990, solution D (w0)
+        {"kahan_li_6", 0.79854399093482996339895035L, 1e-18},                 // Kahan & Li 1997
+        {"kahan_li_8", -0.60550853383003451169892108L, 1e-18},                // Kahan & Li 1997
+        {"suzuki_umeno_8", -0.7968879393529163540197888401737330534463L, 1e-18},  // McLachlan 1995
+        {"sofroniou_spaletta_10", 0.049317735759594537917680008339338L, 1e-18},   // Sofroniou & Spaletta 2005
+    };
+    for (const published& row : rows) {
+        CAPTURE(row.name);
+        const table& t = method(row.name);
+        // The centre of a KDK leapfrog composition is the middle drift.
+        const auto& d = t.drift();
+        const coefficient centre = d[d.size() / 2 - (d.size() % 2 == 0 ? 1 : 0)];
+        CAPTURE(static_cast<double>(centre));
+        CHECK(std::fabs(static_cast<double>(centre - row.centre)) <= row.tolerance);
+    }
+}
+
+TEST_CASE("catalog: unknown names list the valid ones") {
+    try {
+        (void)method("leapfrog_kdx");
+        FAIL("no exception");
+    } catch (const invalid_argument& e) {
+        const std::string what = e.what();
+        CHECK(what.find("'leapfrog_kdx'") != std::string::npos);
+        CHECK(what.find("leapfrog_kdk") != std::string::npos);
+        CHECK(what.find("sofroniou_spaletta_10") != std::string::npos);
+    }
+}

@@ -1,0 +1,87 @@
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <vector>
+
+#include <sympl/sympl.hpp>
+#include <sympl/hamiltonians/harmonic_oscillator.hpp>
+#include <sympl/hamiltonians/kepler.hpp>
+
+using namespace sympl;
+
+namespace {
+using State = phase_space<double, 1>;
+using V1 = Eigen::Matrix<double, 1, 1>;
+
+// An oscillator whose force blows up past |q| = 2 (to test the blow-up report).
+struct breaking_oscillator {
+    template <class V> auto kinetic(const V& p) const { return 0.5 * p.squaredNorm(); }
+    template <class V> auto potential(const V& q) const { return 0.5 * q.squaredNorm(); }
+    template <class V> void force(const V& q, V& f) const {
+        f = -q;
+        if (std::fabs(q[0]) > 2) f[0] = std::nan("");
+    }
+};
+}  // namespace
+
+TEST_CASE("integrate_until lands exactly on t_end, with a shortened last step") {
+    splitting_stepper<hamiltonians::harmonic_oscillator, State> s({}, method("forest_ruth_4"));
+    State x(V1(1.0), V1(0.0));
+    const run_summary r = integrate_until(s, x, 0.0, 1.05, 0.1, no_observer{});
+    CHECK(r.steps == 11);  // 10 steps of 0.1 and one of 0.05
+    CHECK(r.t == 1.05);
+    const State exact = hamiltonians::harmonic_oscillator{}.exact(State(V1(1.0), V1(0.0)), 1.05);
+    CHECK(max_difference(x, exact) < 1e-5);
+    // dt that divides the span: exactly n steps, no sliver step.
+    State y(V1(1.0), V1(0.0));
+    CHECK(integrate_until(s, y, 0.0, 0.3, 0.1).steps == 3);
+}
+
+TEST_CASE("integrate_steps calls the observer at t0, every k steps and at the end, with t = t0 + i*dt") {
+    splitting_stepper<hamiltonians::kepler, phase_space<double, 2>> s({}, method("leapfrog_kdk"));
+    auto x = hamiltonians::kepler::initial_state(0.5);
+    std::vector<double> times;
+    run_options opt;
+    opt.observe_every = 3;
+    const run_summary r = integrate_steps(s, x, 1.0, 0.1, 10, [&](const auto&, double t) { times.push_back(t); }, opt);
+    REQUIRE(times.size() == 5);  // t0, 3, 6, 9 and the last step (10)
+    CHECK(times[0] == 1.0);
+    CHECK(times[1] == 1.0 + 3 * 0.1);
+    CHECK(times[3] == 1.0 + 9 * 0.1);
+    CHECK(times[4] == 1.0 + 10 * 0.1);
+    CHECK(r.steps == 10);
+    CHECK(r.force_evaluations == 11);  // leapfrog: one per step, plus the first
+}
+
+TEST_CASE("a run that blows up reports the step and time and keeps the last finite state") {
+    splitting_stepper<breaking_oscillator, State> s({}, method("leapfrog_kdk"));
+    // The amplitude grows past 2 only through a violent kick: start beyond it moving out.
+    State x(V1(1.9), V1(3.0));
+    try {
+        integrate_steps(s, x, 0.0, 0.01, 1000);
+        FAIL("no exception");
+    } catch (const integration_error& e) {
+        CAPTURE(e.what());
+        CHECK(e.step >= 1);
+        CHECK(e.time == doctest::Approx(0.01 * (e.step - 1)));
+        CHECK(std::string(e.what()).find("step " + std::to_string(e.step)) != std::string::npos);
+        CHECK(is_finite(x));
+        CHECK(std::fabs(x.q[0]) <= 2.0);  // the last state before the force broke
+        // Replaying by hand from the start reaches the same state at step-1.
+        State y(V1(1.9), V1(3.0));
+        for (std::size_t i = 1; i < e.step; ++i) s.step(y, 0.01);
+        CHECK(max_difference(x, y) == 0.0);
+    }
+}
+
+TEST_CASE("bad arguments: non-positive or non-finite dt, t_end before t0, non-finite state") {
+    splitting_stepper<hamiltonians::harmonic_oscillator, State> s({}, method("leapfrog_kdk"));
+    State x(V1(1.0), V1(0.0));
+    CHECK_THROWS_WITH_AS(integrate_steps(s, x, 0.0, -0.1, 10), doctest::Contains("dt = -0.1"), invalid_argument);
+    CHECK_THROWS_AS(integrate_steps(s, x, 0.0, 0.0, 10), invalid_argument);
+    CHECK_THROWS_AS(integrate_until(s, x, 0.0, 1.0, INFINITY), invalid_argument);
+    CHECK_THROWS_WITH_AS(integrate_until(s, x, 2.0, 1.0, 0.1), doctest::Contains("t_end = 1"), invalid_argument);
+    State bad(V1(NAN), V1(0.0));
+    CHECK_THROWS_AS(integrate_steps(s, bad, 0.0, 0.1, 10), invalid_argument);
+    CHECK(x.q[0] == 1.0);  // nothing computed was lost or changed
+}

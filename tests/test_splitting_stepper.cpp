@@ -1,0 +1,109 @@
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <limits>
+
+#include <sympl/sympl.hpp>
+#include <sympl/hamiltonians/fpu_beta.hpp>
+#include <sympl/hamiltonians/harmonic_oscillator.hpp>
+#include <sympl/hamiltonians/kepler.hpp>
+#include <sympl/hamiltonians/pendulum.hpp>
+
+using namespace sympl;
+
+TEST_CASE("splitting_stepper: fixed-size and dynamic states give identical trajectories") {
+    using Fixed = phase_space<double, 2>;
+    using Dynamic = phase_space<double>;
+    for (const char* name : {"leapfrog_kdk", "pefrl_4", "blanes_moan_srkn11b"}) {
+        CAPTURE(name);
+        splitting_stepper<hamiltonians::kepler, Fixed> fixed({}, method(name));
+        splitting_stepper<hamiltonians::kepler, Dynamic> dynamic({}, method(name));
+        Fixed a = hamiltonians::kepler::initial_state(0.6);
+        Dynamic b(a.q, a.p);
+        fixed.steps(a, 0.01, 2000);
+        dynamic.steps(b, 0.01, 2000);
+        CHECK(a.q[0] == b.q[0]);
+        CHECK(a.q[1] == b.q[1]);
+        CHECK(a.p[0] == b.p[0]);
+        CHECK(a.p[1] == b.p[1]);
+    }
+}
+
+TEST_CASE("splitting_stepper: force and velocity evaluations are counted, the last force reused") {
+    using State = phase_space<double, 1>;
+    splitting_stepper<hamiltonians::pendulum, State> lf({}, method("leapfrog_kdk"));
+    State x(Eigen::Matrix<double, 1, 1>(1.0), Eigen::Matrix<double, 1, 1>(0.0));
+    lf.steps(x, 0.1, 1000);
+    CHECK(lf.force_evaluations() == 1001);  // one per step plus the very first
+    CHECK(lf.velocity_evaluations() == 1000);
+    splitting_stepper<hamiltonians::pendulum, State> y6({}, method("yoshida_6"));
+    y6.steps(x, 0.1, 100);
+    CHECK(y6.force_evaluations() == 7 * 100 + 1);
+    // step() never trusts a force from an earlier call.
+    lf.reset_counters();
+    for (int i = 0; i < 10; ++i) lf.step(x, 0.1);
+    CHECK(lf.force_evaluations() == 20);
+}
+
+TEST_CASE("splitting_stepper: a user table runs and a zero or non-finite dt is refused") {
+    using State = phase_space<double, 1>;
+    splitting_stepper<hamiltonians::harmonic_oscillator, State> s({}, table("mine", {0.5L, 0.5L}, {1, 0}));
+    State x(Eigen::Matrix<double, 1, 1>(1.0), Eigen::Matrix<double, 1, 1>(0.0));
+    CHECK_THROWS_AS(s.step(x, 0.0), invalid_argument);
+    CHECK_THROWS_AS(s.step(x, std::nan("")), invalid_argument);
+    CHECK(x.q[0] == 1.0);  // nothing moved
+    // Leapfrog on the oscillator: exact closed form of one step, q1 = q0 (1 - h^2/2) + h p0.
+    s.step(x, 0.1);
+    CHECK(x.q[0] == doctest::Approx(1 - 0.005).epsilon(1e-15));
+}
+
+TEST_CASE("splitting_stepper: compensated summation keeps roundoff from growing with the step count") {
+    // Float leapfrog on the oscillator, compared with the same method run in
+    // double (compensated): the difference is float roundoff alone. Plain
+    // summation loses ~eps/2 per update, a random walk growing like sqrt(n);
+    // Kahan summation carries each update's rounding error into the next, so
+    // the error stays at a few ulps whatever n (Kahan 1965).
+    const hamiltonians::harmonic_oscillator h;
+    const double dt = 1.0 / 8192;  // exact in float, so both runs use the same step
+    const double eps = std::numeric_limits<float>::epsilon();
+    auto roundoff = [&](bool compensated, int n) {
+        phase_space<double, 1> ref(Eigen::Matrix<double, 1, 1>(1.0), Eigen::Matrix<double, 1, 1>(0.0));
+        splitting_stepper<hamiltonians::harmonic_oscillator, phase_space<double, 1>> exact_ish(h, method("leapfrog_kdk"), {true});
+        exact_ish.steps(ref, dt, n);
+        using F = phase_space<float, 1>;
+        splitting_stepper<hamiltonians::harmonic_oscillator, F> s(h, method("leapfrog_kdk"), {compensated});
+        F x(Eigen::Matrix<float, 1, 1>(1.0f), Eigen::Matrix<float, 1, 1>(0.0f));
+        s.steps(x, float(dt), n);
+        return std::max(std::fabs(double(x.q[0]) - ref.q[0]), std::fabs(double(x.p[0]) - ref.p[0]));
+    };
+    const int short_run = 1 << 16, long_run = 1 << 22;
+    const double plain_short = roundoff(false, short_run), plain_long = roundoff(false, long_run);
+    const double kahan_short = roundoff(true, short_run), kahan_long = roundoff(true, long_run);
+    CAPTURE(plain_short);
+    CAPTURE(plain_long);
+    CAPTURE(kahan_short);
+    CAPTURE(kahan_long);
+    CHECK(kahan_short <= 2 * eps);
+    CHECK(kahan_long <= 2 * eps);
+    CHECK(plain_short >= 10 * eps);   // a random walk of ~sqrt(n) half-ulps
+    CHECK(plain_long >= 20 * eps);
+    CHECK(100 * kahan_long < plain_long);
+}
+
+TEST_CASE("splitting_stepper: the FPU-beta chain conserves energy with a 4th-order table") {
+    Eigen::VectorXd q(32), p(32);
+    for (int i = 0; i < 32; ++i) {
+        q[i] = 0.1 * std::sin(3.14159265358979 * (i + 1) / 33);
+        p[i] = 0;
+    }
+    const hamiltonians::fpu_beta h{1.0};
+    phase_space<double> x(q, p);
+    const double e0 = energy(h, x);
+    splitting_stepper<hamiltonians::fpu_beta, phase_space<double>> s(h, method("forest_ruth_4"));
+    double worst = 0;
+    for (int i = 0; i < 100; ++i) {
+        s.steps(x, 0.05, 10);
+        worst = std::max(worst, std::fabs(energy(h, x) - e0) / e0);
+    }
+    CHECK(worst < 1e-6);
+}

@@ -1,0 +1,130 @@
+#include <doctest/doctest.h>
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include <boost/numeric/odeint.hpp>
+
+#include <sympl/sympl.hpp>
+#include <sympl/hamiltonians/pendulum.hpp>
+
+using namespace sympl;
+
+namespace {
+std::string message_of(auto&& build) {
+    try {
+        build();
+    } catch (const error& e) {
+        return e.what();
+    }
+    return "no exception";
+}
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+}  // namespace
+
+TEST_CASE("table: invalid tables are refused with the table, the bad value and what was expected") {
+    const auto lengths = message_of([] { table("mine", {0.5, 0.5}, {1}); });
+    CHECK(contains(lengths, "table 'mine'"));
+    CHECK(contains(lengths, "kick has 2 coefficients and drift has 1"));
+    CHECK(contains(message_of([] { table("e", {}, {}); }), "expected equal lengths of at least 1"));
+    const auto nan = message_of([] { table("n", {std::numeric_limits<coefficient>::quiet_NaN(), 1}, {1, 0}); });
+    CHECK(contains(nan, "kick[0] = nan"));
+    CHECK(contains(nan, "expected a finite coefficient"));
+    const auto sum = message_of([] { table("s", {0.5, 0.4}, {1, 0}); });
+    CHECK(contains(sum, "sum(kick) = 0.9"));
+    CHECK(contains(sum, "expected 1 within 1e-14"));
+    CHECK(contains(message_of([] { table("d", {1}, {1 + 1e-13L}); }), "sum(drift)"));
+    CHECK(contains(message_of([] { from_seed("v", {1, 1}, {1, 0}); }), "expected M = 2"));
+}
+
+TEST_CASE("table: canonical form merges neighbours and drops zero sub-steps") {
+    // K(1/4) K(1/4) D(1/2) D(0) D(1/2) K(1/2) -> K(1/2) D(1) K(1/2)
+    const table t("merged", {0.25L, 0.25L, 0, 0.5L}, {0, 0.5L, 0.5L, 0});
+    CHECK(t == method("leapfrog_kdk"));
+    CHECK(t.stages() == 2);
+    CHECK(t.force_evaluations() == 1);
+}
+
+TEST_CASE("table: force evaluations count the reuse of the last force") {
+    CHECK(method("leapfrog_kdk").force_evaluations() == 1);
+    CHECK(method("leapfrog_dkd").force_evaluations() == 1);
+    CHECK(method("euler_cromer").force_evaluations() == 1);
+    CHECK(method("forest_ruth_4").force_evaluations() == 3);
+    CHECK(method("pefrl_4").force_evaluations() == 4);
+    CHECK(method("yoshida_6").force_evaluations() == 7);
+    CHECK(method("sofroniou_spaletta_10").force_evaluations() == 35);
+    CHECK(method("blanes_moan_srkn11b").force_evaluations() == 11);
+}
+
+TEST_CASE("table: linear stability interval (|trace| < 2 on the harmonic oscillator)") {
+    // Leapfrog: trace = 2 - h^2, stable for h < 2.
+    CHECK(method("leapfrog_kdk").stability_interval() == doctest::Approx(2.0).epsilon(1e-12));
+    CHECK(method("euler_cromer").stability_interval() == doctest::Approx(2.0).epsilon(1e-12));
+    // Forest-Ruth / triple jump of leapfrog: known limit 1.5734 (McLachlan 1995 reports ~1.57).
+    CHECK(method("forest_ruth_4").stability_interval() == doctest::Approx(1.5734).epsilon(1e-3));
+    // Composing leapfrog s times with weights 1/s is leapfrog at dt/s: stable up to 2s.
+    const table four = compose(method("leapfrog_kdk"), {0.25L, 0.25L, 0.25L, 0.25L});
+    CHECK(four.stability_interval() == doctest::Approx(8.0).epsilon(1e-9));
+}
+
+TEST_CASE("table: symmetry and the adjoint") {
+    CHECK(method("leapfrog_kdk").is_symmetric());
+    CHECK_FALSE(method("euler_cromer").is_symmetric());
+    CHECK(adjoint(method("euler_cromer")) == method("euler_cromer_dk"));
+    const table& ma4 = method("mclachlan_atela_4");
+    CHECK_FALSE(ma4.is_symmetric());
+    CHECK(adjoint(adjoint(ma4)) == ma4);
+    // A method followed by its adjoint (half a step each) is symmetric.
+    CHECK(concatenate(method("euler_cromer"), method("euler_cromer_dk")) == method("leapfrog_kdk"));
+    CHECK(concatenate(ma4, adjoint(ma4)).is_symmetric());
+}
+
+TEST_CASE("table: triple jump and Suzuki composition raise the order by two (measured)") {
+    const table lf = method("leapfrog_kdk");
+    const table tj = triple_jump(lf);
+    CHECK(tj.order() == 4);
+    CHECK(tj.force_evaluations() == 3);  // adjacent kicks merged
+    for (auto problem : {order_problem::pendulum, order_problem::nonquadratic_kinetic}) {
+        CAPTURE(to_string(problem));
+        CHECK(std::fabs(measure_order(tj, problem).order - 4) <= 0.15);
+        CHECK(std::fabs(measure_order(suzuki_fractal(lf), problem).order - 4) <= 0.15);
+        CHECK(std::fabs(measure_order(triple_jump(method("forest_ruth_4")), problem).order - 6) <= 0.15);
+        CHECK(std::fabs(measure_order(triple_jump(tj), problem).order - 6) <= 0.15);
+    }
+    // The triple jump of leapfrog is Forest-Ruth up to the kick/drift reading.
+    CHECK(triple_jump(method("leapfrog_dkd")).stages() == method("forest_ruth_4").stages());
+    CHECK_THROWS_AS(triple_jump(method("euler_cromer")), invalid_argument);
+    CHECK_THROWS_AS(compose(lf, {0.5L, 0.4L}), invalid_argument);
+}
+
+TEST_CASE("table: from_drift_first reproduces Boost.Odeint's symplectic_rkn_sb3a_mclachlan on the pendulum") {
+    // Odeint's coefficients a (drift) and b (kick), converted by role, must give
+    // Odeint's own trajectory.
+    using container = std::array<double, 1>;
+    boost::numeric::odeint::symplectic_rkn_sb3a_mclachlan<container> odeint_stepper;
+    std::vector<coefficient> drift, kick;
+    for (double a : odeint_stepper.coef_a()) drift.push_back(a);
+    for (double b : odeint_stepper.coef_b()) kick.push_back(b);
+    const table converted = from_drift_first("odeint", drift, kick);
+    CHECK(converted.stages() == method("odeint_sb3a_mclachlan").stages());
+
+    using State = phase_space<double, 1>;
+    splitting_stepper<hamiltonians::pendulum, State> ours({}, converted);
+    State x(Eigen::Matrix<double, 1, 1>(1.3), Eigen::Matrix<double, 1, 1>(0.2));
+    std::pair<container, container> y{{1.3}, {0.2}};
+    auto dqdt = [](const container& p, container& dq) { dq[0] = p[0]; };
+    auto dpdt = [](const container& q, container& dp) { dp[0] = -std::sin(q[0]); };
+    for (int i = 0; i < 1000; ++i) {
+        ours.step(x, 0.05);
+        odeint_stepper.do_step(std::make_pair(dqdt, dpdt), y, 0.0, 0.05);
+    }
+    CHECK(std::fabs(x.q[0] - y.first[0]) <= 1e-13);
+    CHECK(std::fabs(x.p[0] - y.second[0]) <= 1e-13);
+    // And the catalog entry (built from the published fractions) agrees too.
+    splitting_stepper<hamiltonians::pendulum, State> cat({}, method("odeint_sb3a_mclachlan"));
+    State z(Eigen::Matrix<double, 1, 1>(1.3), Eigen::Matrix<double, 1, 1>(0.2));
+    for (int i = 0; i < 1000; ++i) cat.step(z, 0.05);
+    CHECK(max_difference(x, z) <= 1e-13);
+}
