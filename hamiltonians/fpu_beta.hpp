@@ -21,7 +21,7 @@ struct fpu_beta {
         }
         return v;
     }
-    template <class V> auto velocity(const V& p) const { return p * 1.0; }
+    template <class V> const V& velocity(const V& p) const { return p; }  // unit mass
     // f_i = phi'(r_i) - phi'(r_{i-1}) with phi'(r) = r + beta r^3, r_i = q_{i+1} - q_i.
     template <class V> void force(const V& q, V& f) const {
         using S = typename V::Scalar;

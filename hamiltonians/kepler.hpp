@@ -19,7 +19,7 @@ struct kepler {
         using std::sqrt;
         return -mu / sqrt(q.squaredNorm());
     }
-    template <class V> auto velocity(const V& p) const { return p * 1.0; }
+    template <class V> const V& velocity(const V& p) const { return p; }  // unit mass
     template <class V> void force(const V& q, V& f) const {
         using std::sqrt;
         const auto r2 = q.squaredNorm();

@@ -46,22 +46,20 @@ public:
     // before: the first force is always evaluated afresh.
     void step(State& x, scalar dt) {
         check_step(x, dt);
-        force_fresh_ = velocity_fresh_ = false;
-        advance(x, dt);
+        run(x, dt, 1, false);
     }
 
     // n consecutive steps: forces and velocities carried over between steps.
     void steps(State& x, scalar dt, std::size_t n) {
         check_step(x, dt);
-        force_fresh_ = velocity_fresh_ = false;
-        for (std::size_t i = 0; i < n; ++i) advance(x, dt);
+        run(x, dt, n, false);
     }
 
     // n more steps of the state this stepper advanced last, unchanged since:
     // the last force is carried over. The driver uses this between chunks.
     void resume_steps(State& x, scalar dt, std::size_t n) {
         check_step(x, dt);
-        for (std::size_t i = 0; i < n; ++i) advance(x, dt);
+        run(x, dt, n, true);
     }
 
     std::uint64_t force_evaluations() const { return force_evaluations_; }
@@ -105,32 +103,47 @@ private:
         y = sum_;
     }
 
-    // The generic loop: one step of the table.
-    void advance(State& x, scalar dt) {
-        for (const op& s : ops_) {
-            const scalar h = s.weight * dt;
-            if (s.is_kick) {
-                if (!force_fresh_) {
-                    force(h_, x.q, force_);
-                    ++force_evaluations_;
-                    force_fresh_ = true;
-                }
-                if (options_.compensated) {
-                    increment_ = h * force_;
-                    add_compensated(x.p, p_error_);
+    // The generic loop: n steps of the table. Flags and counters live in
+    // registers during the run (a fresh force is needed only after q moved).
+    void run(State& x, scalar dt, std::size_t n, bool resume) {
+        bool force_fresh = resume && force_fresh_, velocity_fresh = resume && velocity_fresh_;
+        std::uint64_t forces = 0, velocities = 0;
+        const op* const first = ops_.data();
+        const op* const last = first + ops_.size();
+        for (std::size_t i = 0; i < n; ++i) {
+            for (const op* s = first; s != last; ++s) {
+                const scalar h = s->weight * dt;
+                if (s->is_kick) {
+                    if (!force_fresh) {
+                        force(h_, x.q, force_);
+                        ++forces;
+                        force_fresh = true;
+                    }
+                    kick(x, h);
+                    velocity_fresh = false;
                 } else {
-                    x.p += h * force_;
+                    velocities += drift(x, h, velocity_fresh);
+                    force_fresh = false;
                 }
-                velocity_fresh_ = false;
-            } else {
-                drift(x, h);
-                force_fresh_ = false;
             }
+        }
+        force_fresh_ = force_fresh;
+        velocity_fresh_ = velocity_fresh;
+        force_evaluations_ += forces;
+        velocity_evaluations_ += velocities;
+    }
+
+    void kick(State& x, scalar h) {
+        if (options_.compensated) {
+            increment_ = h * force_;
+            add_compensated(x.p, p_error_);
+        } else {
+            x.p += h * force_;
         }
     }
 
-    void drift(State& x, scalar h) {
-        ++velocity_evaluations_;
+    // Returns the number of velocity evaluations made (0 or 1).
+    int drift(State& x, scalar h, bool& velocity_fresh) {
         if constexpr (has_velocity_value<H, vector> && !has_velocity_into<H, vector>) {
             // An analytic velocity that returns an expression (e.g. p / m) fuses into the update.
             if (options_.compensated) {
@@ -139,13 +152,13 @@ private:
             } else {
                 x.q.noalias() += h * h_.velocity(x.p);
             }
-            return;
+            return 1;
         }
-        if (!velocity_fresh_) {
+        int evaluated = 0;
+        if (!velocity_fresh) {
             velocity(h_, x.p, velocity_);
-            velocity_fresh_ = true;
-        } else {
-            --velocity_evaluations_;
+            velocity_fresh = true;
+            evaluated = 1;
         }
         if (options_.compensated) {
             increment_ = h * velocity_;
@@ -153,6 +166,7 @@ private:
         } else {
             x.q += h * velocity_;
         }
+        return evaluated;
     }
 
     H h_;
