@@ -74,13 +74,14 @@ void gradient(const Fn& fn, const Vec& x, Vec& out) {
     if (out.size() != n) out.resize(n);
     for (Eigen::Index i = 0; i < n; ++i) xd[i] = D(x[i]);
     for (Eigen::Index start = 0; start < n; start += W) {
-        const Eigen::Index width = std::min<Eigen::Index>(W, n - start);
-        for (Eigen::Index k = 0; k < width; ++k) xd[start + k].grad[k] = S(1);
+        for (int k = 0; k < W; ++k)
+            if (start + k < n) xd[start + k].grad[k] = S(1);
         const D y = fn(xd);
-        for (Eigen::Index k = 0; k < width; ++k) {
-            out[start + k] = y.grad[k];
-            xd[start + k].grad[k] = S(0);
-        }
+        for (int k = 0; k < W; ++k)
+            if (start + k < n) {
+                out[start + k] = y.grad[k];
+                xd[start + k].grad[k] = S(0);
+            }
     }
 }
 }  // namespace detail
