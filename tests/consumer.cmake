@@ -6,7 +6,7 @@ foreach(step
     "${CMAKE_COMMAND};-S;${SOURCE};-B;${WORK}/sympl;-DSYMPL_BUILD_TESTS=OFF;-DSYMPL_BUILD_BENCH=OFF;-DSYMPL_BUILD_PROGRAM=OFF;-DCMAKE_INSTALL_PREFIX=${prefix}"
     "${CMAKE_COMMAND};--install;${WORK}/sympl"
     "${CMAKE_COMMAND};-S;${SOURCE}/examples;-B;${WORK}/examples;-DCMAKE_PREFIX_PATH=${prefix}"
-    "${CMAKE_COMMAND};--build;${WORK}/examples;--target;quickstart;-j2"
+    "${CMAKE_COMMAND};--build;${WORK}/examples;-j2"
     "${WORK}/examples/quickstart")
   execute_process(COMMAND ${step} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 0)

@@ -10,6 +10,7 @@
 #include <sympl/hamiltonians/kepler.hpp>
 #include <sympl/hamiltonians/pendulum.hpp>
 #include <sympl/hamiltonians/relativistic_pendulum.hpp>
+#include <sympl/hamiltonians/two_particle_spring.hpp>
 
 using namespace sympl;
 
@@ -51,6 +52,10 @@ TEST_CASE("hamiltonian: autodiff gradients equal analytic ones on every ready-ma
         q << 0.5, -2.0, 1.0;
         p << 3.0, -0.2, 0.7;
         check_gradients(hamiltonians::relativistic_pendulum{2.0, 1.5, 0.7}, q, p);
+    }
+    SUBCASE("two particles joined by a spring (seed eq. 3.72)") {
+        Eigen::Vector4d q(0.3, -1.0, 2.0, 0.5), p(1.0, 2.0, -0.5, 0.25);
+        check_gradients(hamiltonians::two_particle_spring{1.5, 2.5}, q, p);
     }
     SUBCASE("FPU-beta chain, 21 particles (chunked autodiff)") {
         Eigen::VectorXd q(21), p(21);

@@ -1,5 +1,6 @@
 #pragma once
-// Measured order of convergence of a table on a nonlinear problem.
+// Measured order of convergence of a method (a table, or any stepper) on a
+// nonlinear problem.
 //
 // The global error of an order-p method at a fixed time is C dt^p + ..., so the
 // difference between runs at dt and dt/2 also shrinks as dt^p: the slope
@@ -11,8 +12,12 @@
 // The harmonic oscillator is never used alone: it cannot tell a
 // kick from a drift, so a table copied with its roles swapped would pass there.
 #include <cmath>
+#include <algorithm>
+#include <concepts>
 #include <cstdint>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include <boost/math/constants/constants.hpp>
@@ -43,29 +48,31 @@ struct order_measurement {
 };
 
 struct order_options {
+    std::size_t min_steps = 1;
     std::size_t max_steps = std::size_t(1) << 14;
     // Differences below this are not used: table coefficients are stored in
     // long double (~1e-19 relative), which leaves an error term of that size.
+    // Runs in double need about 1e-10.
     double floor = 1e-22;
     // Three consecutive slopes, each within this of the next, mark the asymptotic range.
     double agreement = 0.08;
 };
 
-// Measured order of `method` on H from x0 over [0, t_end], halving dt from t_end.
-template <class H, int D>
-order_measurement measure_order(const table& method, const H& h, const phase_space<quad, D>& x0, const quad& t_end,
-                                const order_options& options = {}) {
-    using State = phase_space<quad, D>;
-    splitting_stepper<H, State> stepper(h, method);
+// Measured order of any method: run(n) returns the state reached at t_end by
+// n steps of t_end/n, for n = 1, 2, 4, ... (up to options.max_steps, from
+// options.min_steps). Works for any state type with max_difference.
+template <class Run>
+    requires std::invocable<Run&, std::size_t>
+order_measurement measure_order(Run&& run, double t_end, const order_options& options = {}) {
+    using State = std::decay_t<std::invoke_result_t<Run&, std::size_t>>;
     order_measurement m;
-    State previous = x0;
+    State previous;
     double last_slope = HUGE_VAL, last_change = HUGE_VAL;
     double pair_slope = 0;  // finest slope that agreed with the one before it
-    for (std::size_t n = 1; n <= options.max_steps; n *= 2) {
-        State x = x0;
-        stepper.steps(x, t_end / quad(n), n);
-        m.dt.push_back(static_cast<double>(t_end / quad(n)));
-        if (n > 1) {
+    for (std::size_t n = std::max<std::size_t>(options.min_steps, 1); n <= options.max_steps; n *= 2) {
+        State x = run(n);
+        m.dt.push_back(t_end / static_cast<double>(n));
+        if (m.dt.size() > 1) {
             const double d = static_cast<double>(max_difference(previous, x));
             m.difference.push_back(std::isfinite(d) ? d : HUGE_VAL);
             if (!(d >= options.floor)) break;
@@ -83,7 +90,7 @@ order_measurement measure_order(const table& method, const H& h, const phase_spa
                 last_change = change;
             }
         }
-        previous = x;
+        previous = std::move(x);
     }
     // No three agreeing slopes before the floor: the finest agreeing pair, or
     // failing that the finest slope read (converged = false).
@@ -92,6 +99,21 @@ order_measurement measure_order(const table& method, const H& h, const phase_spa
         m.converged = true;
     }
     return m;
+}
+
+// Measured order of `method` on H from x0 over [0, t_end], halving dt from t_end.
+template <class H, int D>
+order_measurement measure_order(const table& method, const H& h, const phase_space<quad, D>& x0, const quad& t_end,
+                                const order_options& options = {}) {
+    using State = phase_space<quad, D>;
+    splitting_stepper<H, State> stepper(h, method);
+    return measure_order(
+        [&](std::size_t n) {
+            State x = x0;
+            stepper.steps(x, t_end / quad(n), n);
+            return x;
+        },
+        static_cast<double>(t_end), options);
 }
 
 // The built-in nonlinear test problems.

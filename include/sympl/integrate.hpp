@@ -22,9 +22,14 @@
 
 namespace sympl {
 
-// Anything with step(x, dt); steps(x, dt, n) is used when present.
+// A stepper of autonomous systems has step(x, dt) (steps(x, dt, n) is used when
+// present); a time-aware one (classic_steppers.hpp) has step(x, t, dt).
 template <class S>
-concept fixed_step_stepper = requires(S s, typename S::state_type& x, typename S::scalar dt) {
+concept time_aware_stepper = requires(S s, typename S::state_type& x, typename S::scalar dt) {
+    s.step(x, dt, dt);
+};
+template <class S>
+concept fixed_step_stepper = time_aware_stepper<S> || requires(S s, typename S::state_type& x, typename S::scalar dt) {
     s.step(x, dt);
 };
 
@@ -54,16 +59,39 @@ std::string number(T v) {
     return s.str();
 }
 
-// `resume`: x is exactly what the stepper left, so it may carry its last force over.
-template <class Stepper, class State>
-void advance(Stepper& s, State& x, typename Stepper::scalar dt, std::size_t n, bool resume) {
-    if constexpr (requires { s.resume_steps(x, dt, n); }) {
-        if (resume) return s.resume_steps(x, dt, n);
-    }
-    if constexpr (requires { s.steps(x, dt, n); })
-        s.steps(x, dt, n);
+// One step from time t.
+template <class Stepper, class State, class T>
+void one_step(Stepper& s, State& x, T t, T dt) {
+    if constexpr (time_aware_stepper<Stepper>)
+        s.step(x, t, dt);
     else
-        for (std::size_t i = 0; i < n; ++i) s.step(x, dt);
+        s.step(x, dt);
+}
+
+// n steps from step index `first` (time t0 + first*dt). `resume`: x is exactly
+// what the stepper left, so it may carry its last force over. A stepper that
+// throws integration_error itself (a corrector that does not converge) is
+// reported with the index of the step.
+template <class Stepper, class State, class T>
+void advance(Stepper& s, State& x, T t0, T dt, std::size_t first, std::size_t n, bool resume) {
+    if constexpr (time_aware_stepper<Stepper>) {
+        for (std::size_t i = 0; i < n; ++i) {
+            try {
+                s.step(x, t0 + T(first + i) * dt, dt);
+            } catch (const integration_error& e) {
+                throw integration_error(std::string(e.what()) + " (step " + std::to_string(first + i + 1) + ")",
+                                        first + i + 1, e.time);
+            }
+        }
+    } else {
+        if constexpr (requires { s.resume_steps(x, dt, n); }) {
+            if (resume) return s.resume_steps(x, dt, n);
+        }
+        if constexpr (requires { s.steps(x, dt, n); })
+            s.steps(x, dt, n);
+        else
+            for (std::size_t i = 0; i < n; ++i) s.step(x, dt);
+    }
 }
 
 template <class Stepper>
@@ -83,12 +111,12 @@ void checked_steps(Stepper& s, State& x, State& checkpoint, T t0, T dt, std::siz
     while (done < n) {
         const std::size_t m = std::min(check_every, n - done);
         checkpoint = x;
-        advance(s, x, dt, m, first + done > 0);
+        advance(s, x, t0, dt, first + done, m, first + done > 0);
         if (!is_finite(x)) {
             x = checkpoint;  // replay one step at a time to find the first bad step
             for (std::size_t j = 0; j < m; ++j) {
                 State before = x;
-                s.step(x, dt);
+                one_step(s, x, t0 + T(first + done + j) * dt, dt);
                 if (!is_finite(x)) {
                     x = before;
                     const std::size_t bad = first + done + j + 1;
@@ -166,7 +194,7 @@ run_summary integrate_until(Stepper& stepper, typename Stepper::state_type& x, t
     run_summary r = integrate_steps(stepper, x, t0, dt, n, observer, options);
     if (rest > T(0)) {
         State last = x;
-        stepper.step(x, rest);
+        detail::one_step(stepper, x, t0 + T(n) * dt, rest);
         if (!is_finite(x)) {
             x = last;
             throw integration_error("integration blew up: the final step " + std::to_string(n + 1) + " (from t = " +

@@ -1,11 +1,15 @@
 #pragma once
 // sympl: symplectic splitting methods for separable Hamiltonians. Everything.
+#include "adaptive.hpp"
 #include "catalog.hpp"
+#include "classic_steppers.hpp"
 #include "convergence.hpp"
 #include "dual.hpp"
+#include "equations_of_motion.hpp"
 #include "error.hpp"
 #include "hamiltonian.hpp"
 #include "integrate.hpp"
 #include "phase_space.hpp"
+#include "richardson.hpp"
 #include "splitting_stepper.hpp"
 #include "table.hpp"
