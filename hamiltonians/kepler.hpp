@@ -1,10 +1,14 @@
 #pragma once
-// Kepler problem in the plane, H = |p|^2/2 - mu/|q| (Hairer, Lubich & Wanner,
-// Geometric Numerical Integration, ch. I.2.3), with the exact orbit from
-// Kepler's equation for the standard initial data of eccentricity e.
+// Kepler problem H = |p|^2/2 - mu/|q| (Hairer, Lubich & Wanner, Geometric
+// Numerical Integration, ch. I.2.3) in the plane or in space (the same H for a
+// 2-D or 3-D state), with the exact orbit from Kepler's equation for the
+// standard initial data of eccentricity e; in 3-D the orbit is turned by the
+// classical angles (argument of pericentre, inclination, ascending node).
 #include <cmath>
 #include <limits>
 #include <string>
+
+#include <Eigen/Geometry>
 
 #include <sympl/error.hpp>
 #include <sympl/phase_space.hpp>
@@ -55,6 +59,28 @@ struct kepler {
         }
         const S c = cos(E), s = sin(E), b = sqrt(1 - ecc * ecc), d = 1 - ecc * c;
         return phase_space<S, 2>(Eigen::Matrix<S, 2, 1>(c - ecc, b * s), Eigen::Matrix<S, 2, 1>(-s / d, b * c / d));
+    }
+
+    // The planar orbit turned into space: R = Rz(node) Rx(inclination) Rz(periapsis).
+    template <class S = double>
+    static phase_space<S, 3> initial_state_3d(double e, double inclination, double node, double periapsis) {
+        return to_space(initial_state<S>(e), inclination, node, periapsis);
+    }
+    template <class S = double>
+    static phase_space<S, 3> exact_state_3d(double e, double inclination, double node, double periapsis, S t) {
+        return to_space(exact_state<S>(e, t), inclination, node, periapsis);
+    }
+
+private:
+    template <class S>
+    static phase_space<S, 3> to_space(const phase_space<S, 2>& x, double inclination, double node, double periapsis) {
+        const Eigen::Matrix3d r = (Eigen::AngleAxisd(node, Eigen::Vector3d::UnitZ()) *
+                                   Eigen::AngleAxisd(inclination, Eigen::Vector3d::UnitX()) *
+                                   Eigen::AngleAxisd(periapsis, Eigen::Vector3d::UnitZ()))
+                                      .toRotationMatrix();
+        const Eigen::Matrix<S, 3, 3> R = r.cast<S>();
+        return phase_space<S, 3>(R * Eigen::Matrix<S, 3, 1>(x.q[0], x.q[1], S(0)),
+                                 R * Eigen::Matrix<S, 3, 1>(x.p[0], x.p[1], S(0)));
     }
 };
 

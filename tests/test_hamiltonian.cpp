@@ -4,12 +4,20 @@
 
 #include <cmath>
 
+#include <sympl/catalog.hpp>
 #include <sympl/hamiltonian.hpp>
+#include <sympl/splitting_stepper.hpp>
+#include <sympl/hamiltonians/double_well.hpp>
 #include <sympl/hamiltonians/fpu_beta.hpp>
 #include <sympl/hamiltonians/harmonic_oscillator.hpp>
+#include <sympl/hamiltonians/henon_heiles.hpp>
 #include <sympl/hamiltonians/kepler.hpp>
+#include <sympl/hamiltonians/morse.hpp>
+#include <sympl/hamiltonians/outer_solar_system.hpp>
 #include <sympl/hamiltonians/pendulum.hpp>
 #include <sympl/hamiltonians/relativistic_pendulum.hpp>
+#include <sympl/hamiltonians/stiff_fpu.hpp>
+#include <sympl/hamiltonians/toda.hpp>
 #include <sympl/hamiltonians/two_particle_spring.hpp>
 
 using namespace sympl;
@@ -57,6 +65,29 @@ TEST_CASE("hamiltonian: autodiff gradients equal analytic ones on every ready-ma
         Eigen::Vector4d q(0.3, -1.0, 2.0, 0.5), p(1.0, 2.0, -0.5, 0.25);
         check_gradients(hamiltonians::two_particle_spring{1.5, 2.5}, q, p);
     }
+    SUBCASE("Henon-Heiles") {
+        check_gradients(hamiltonians::henon_heiles{}, Eigen::Vector2d(0.3, -0.4), Eigen::Vector2d(0.1, 0.2));
+    }
+    SUBCASE("stiff FPU, m = 3") {
+        Eigen::Matrix<double, 6, 1> q, p;
+        q << 0.3, -0.2, 0.5, 0.1, -0.4, 0.25;
+        p << 1, 2, 3, 4, 5, 6;
+        check_gradients(hamiltonians::stiff_fpu{}, q, p);
+    }
+    SUBCASE("outer solar system") {
+        const hamiltonians::outer_solar_system s{};
+        const auto x = s.initial_state();
+        check_gradients(s, x.q, x.p);
+    }
+    SUBCASE("Kepler in 3-D") {
+        check_gradients(hamiltonians::kepler{}, Eigen::Vector3d(0.4, -0.9, 0.3), Eigen::Vector3d(1.2, 0.3, -0.1));
+    }
+    SUBCASE("Morse, double well, Toda") {
+        const Eigen::Vector3d q(0.3, -0.5, 1.7), p(0.2, -1.0, 0.4);
+        check_gradients(hamiltonians::morse{2.0, 1.5, 0.8, 0.2}, q, p);
+        check_gradients(hamiltonians::double_well{0.7}, q, p);
+        check_gradients(hamiltonians::toda{}, q, p);
+    }
     SUBCASE("FPU-beta chain, 21 particles (chunked autodiff)") {
         Eigen::VectorXd q(21), p(21);
         for (int i = 0; i < 21; ++i) {
@@ -76,4 +107,45 @@ TEST_CASE("hamiltonian: a pair of lambdas, energy, and Hamilton's equations (see
     hamilton_rhs(h, x, dxdt);
     CHECK(dxdt.q[0] == doctest::Approx(-0.3).epsilon(1e-15));          // dq/dt = dT/dp
     CHECK(dxdt.p[0] == doctest::Approx(-std::sin(0.8)).epsilon(1e-15));  // dp/dt = -dV/dq
+}
+
+TEST_CASE("hamiltonians: exact solutions agree with a 10th-order run (Kepler 3-D, Morse)") {
+    {
+        using S3 = phase_space<double, 3>;
+        const double e = 0.6, i = 0.4, node = 1.1, w = -0.7;
+        S3 x = hamiltonians::kepler::initial_state_3d(e, i, node, w);
+        auto s = make_stepper<S3>(hamiltonians::kepler{}, method("sofroniou_spaletta_10"));
+        s.steps(x, 0.005, 1000);
+        CHECK(max_difference(x, hamiltonians::kepler::exact_state_3d(e, i, node, w, 5.0)) < 1e-11);
+        // the orbit lies in the plane normal to the angular momentum
+        const Eigen::Vector3d L = x.q.cross(x.p);
+        CHECK(std::fabs(L.normalized().z() - std::cos(i)) < 1e-12);
+    }
+    {
+        using S2 = phase_space<double, 2>;
+        const hamiltonians::morse m{1.3, 2.0, 0.9, 0.5};
+        const S2 x0(Eigen::Vector2d(0.2, 1.4), Eigen::Vector2d(0.8, -0.3));
+        S2 x = x0;
+        auto s = make_stepper<S2>(m, method("sofroniou_spaletta_10"));
+        s.steps(x, 0.005, 2000);
+        CHECK(max_difference(x, m.exact(x0, 10.0)) < 1e-11);
+        CHECK_THROWS_AS(m.exact(S2(Eigen::Vector2d(0.5, 0.5), Eigen::Vector2d(5.0, 0.0)), 1.0), invalid_argument);
+    }
+}
+
+TEST_CASE("hamiltonians: initial data of the cited problems") {
+    // Henon-Heiles at energy 1/6 on the section q1 = 0.
+    const auto hh = hamiltonians::henon_heiles::initial_state(1.0 / 6, 0.1, 0.05);
+    CHECK(energy(hamiltonians::henon_heiles{}, hh) == doctest::Approx(1.0 / 6).epsilon(1e-15));
+    CHECK_THROWS_AS(hamiltonians::henon_heiles::initial_state(0.001, 0.5), invalid_argument);
+    // Stiff FPU (GNI I.5.1): the stiff spring's energy is (omega x_{1,1})^2/2 + y_{1,1}^2/2 = 1.
+    const hamiltonians::stiff_fpu fpu{};
+    const auto x = fpu.initial_state();
+    const double d = x.q[1] - x.q[0], dp = x.p[1] - x.p[0];
+    CHECK(0.5 * dp * dp / 2 + fpu.omega * fpu.omega / 4 * d * d == doctest::Approx(1.0));
+    // Outer solar system: total momentum small, energy negative (a bound system).
+    const hamiltonians::outer_solar_system sun{};
+    const auto y = sun.initial_state();
+    CHECK(energy(sun, y) < 0);
+    CHECK(y.p.segment<3>(3).norm() == doctest::Approx(0.000954786104043 * Eigen::Vector3d(0.00565429, -0.00412490, -0.00190589).norm()));
 }

@@ -1,5 +1,6 @@
 #pragma once
-// sympl: symplectic splitting methods for separable Hamiltonians. Everything.
+// sympl: symplectic splitting methods for separable Hamiltonians. Everything
+// but the Boost.Odeint interop (odeint.hpp), which pulls in all of Odeint.
 #include "adaptive.hpp"
 #include "catalog.hpp"
 #include "classic_steppers.hpp"
@@ -10,6 +11,7 @@
 #include "hamiltonian.hpp"
 #include "integrate.hpp"
 #include "phase_space.hpp"
+#include "phase_space_measures.hpp"
 #include "richardson.hpp"
 #include "splitting_stepper.hpp"
 #include "table.hpp"
