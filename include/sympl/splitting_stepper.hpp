@@ -38,7 +38,7 @@ public:
     splitting_stepper(H hamiltonian, table method, stepper_options options = {})
         : h_(std::move(hamiltonian)), table_(std::move(method)), options_(options) {
         for (const substep& s : table_.substeps())
-            ops_.push_back({s.kind == substep::kick, static_cast<scalar>(s.weight)});
+            ops_.push_back({s.kind == substep::kick, static_cast<scalar>(s.weight), scalar(0)});
         if constexpr (State::dimension != Eigen::Dynamic) size_workspace(State::dimension);
     }
 
@@ -74,6 +74,7 @@ private:
     struct op {
         bool is_kick;
         scalar weight;
+        scalar step;  // weight * dt of the current run
     };
 
     void check_step(const State& x, scalar dt) {
@@ -104,25 +105,42 @@ private:
     }
 
     // The generic loop: n steps of the table. Flags and counters live in
-    // registers during the run (a fresh force is needed only after q moved).
+    // registers during the run (a fresh force is needed only after q moved);
+    // the sub-step sizes weight*dt are computed once per run, and the choice of
+    // compensated summation once, outside the loop.
     void run(State& x, scalar dt, std::size_t n, bool resume) {
+        for (std::size_t k = 0; k < ops_.size(); ++k) ops_[k].step = ops_[k].weight * dt;
+        if constexpr (State::dimension != Eigen::Dynamic) {
+            // Small fixed-size states run in locals the compiler keeps in
+            // registers: no aliasing with the caller's state or the workspace.
+            State y = x;
+            vector f = force_;
+            options_.compensated ? run_loop<true>(y, f, n, resume) : run_loop<false>(y, f, n, resume);
+            x = y;
+            force_ = f;
+        } else {
+            options_.compensated ? run_loop<true>(x, force_, n, resume) : run_loop<false>(x, force_, n, resume);
+        }
+    }
+
+    template <bool Compensated>
+    void run_loop(State& x, vector& f, std::size_t n, bool resume) {
         bool force_fresh = resume && force_fresh_, velocity_fresh = resume && velocity_fresh_;
         std::uint64_t forces = 0, velocities = 0;
         const op* const first = ops_.data();
         const op* const last = first + ops_.size();
         for (std::size_t i = 0; i < n; ++i) {
             for (const op* s = first; s != last; ++s) {
-                const scalar h = s->weight * dt;
                 if (s->is_kick) {
                     if (!force_fresh) {
-                        force(h_, x.q, force_);
+                        force(h_, x.q, f);
                         ++forces;
                         force_fresh = true;
                     }
-                    kick(x, h);
+                    kick<Compensated>(x, f, s->step);
                     velocity_fresh = false;
                 } else {
-                    velocities += drift(x, h, velocity_fresh);
+                    velocities += drift<Compensated>(x, s->step, velocity_fresh);
                     force_fresh = false;
                 }
             }
@@ -133,20 +151,22 @@ private:
         velocity_evaluations_ += velocities;
     }
 
-    void kick(State& x, scalar h) {
-        if (options_.compensated) {
-            increment_ = h * force_;
+    template <bool Compensated>
+    void kick(State& x, const vector& f, scalar h) {
+        if constexpr (Compensated) {
+            increment_ = h * f;
             add_compensated(x.p, p_error_);
         } else {
-            x.p += h * force_;
+            x.p += h * f;
         }
     }
 
     // Returns the number of velocity evaluations made (0 or 1).
+    template <bool Compensated>
     int drift(State& x, scalar h, bool& velocity_fresh) {
         if constexpr (has_velocity_value<H, vector> && !has_velocity_into<H, vector>) {
             // An analytic velocity that returns an expression (e.g. p / m) fuses into the update.
-            if (options_.compensated) {
+            if constexpr (Compensated) {
                 increment_.noalias() = h * h_.velocity(x.p);
                 add_compensated(x.q, q_error_);
             } else {
@@ -160,7 +180,7 @@ private:
             velocity_fresh = true;
             evaluated = 1;
         }
-        if (options_.compensated) {
+        if constexpr (Compensated) {
             increment_ = h * velocity_;
             add_compensated(x.q, q_error_);
         } else {
