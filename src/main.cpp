@@ -1,8 +1,11 @@
 // The sympl command-line program.
 //   sympl tables [--json]            every catalog entry and its properties
 //   sympl check-table --kick ... --drift ... [--convention ...] [--json]
+//   sympl run SCENE.toml [--json]    one scene: summary and the outputs it asks for
+//   sympl report [SCENE.toml ...] [--out DIR] [--quick]   the work-precision study
 // Invalid input: exit code 2 and one line on stderr.
 #include <cstdio>
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -12,6 +15,9 @@
 #include <CLI/CLI.hpp>
 
 #include <sympl/sympl.hpp>
+
+#include "report.hpp"
+#include "scene.hpp"
 
 namespace {
 
@@ -135,6 +141,20 @@ int main(int argc, char** argv) {
         ->check(CLI::IsMember({"kick-first", "drift-first", "seed"}));
     check->add_flag("--json", check_json, "JSON output");
 
+    auto* run = app.add_subcommand("run", "Run one scene file and print its summary");
+    std::string scene_file;
+    bool run_json = false;
+    run->add_option("scene", scene_file, "scene file (TOML)")->required();
+    run->add_flag("--json", run_json, "JSON output");
+
+    auto* report = app.add_subcommand("report", "Work-precision study over scenes (default: the built-in set)");
+    std::vector<std::string> report_files;
+    sympl::app::report_options report_options;
+    report->add_option("scenes", report_files, "scene files (TOML); none: the built-in set");
+    report->add_option("--out", report_options.out_dir, "output directory (default sympl-report)");
+    report->add_flag("--quick", report_options.quick, "short runs: under a minute on 2 cores");
+    report->add_flag("--no-plots", [&](std::int64_t) { report_options.plots = false; }, "skip the gnuplot PNGs");
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -146,7 +166,18 @@ int main(int argc, char** argv) {
     try {
         if (*tables) print_tables(tables_json);
         if (*check) return check_table(kick, drift, convention, check_json);
+        if (*run) sympl::app::run_scene(sympl::app::load_scene(scene_file), run_json, std::cout);
+        if (*report) {
+            std::vector<sympl::app::scene> scenes;
+            for (const auto& f : report_files) scenes.push_back(sympl::app::load_scene(f));
+            report_options.studies = report_files.empty();
+            if (scenes.empty()) scenes = sympl::app::default_scenes(report_options.quick);
+            sympl::app::run_report(scenes, report_options, std::cout);
+        }
     } catch (const sympl::error& e) {
+        std::cerr << "sympl: " << e.what() << "\n";
+        return 2;
+    } catch (const std::filesystem::filesystem_error& e) {
         std::cerr << "sympl: " << e.what() << "\n";
         return 2;
     }

@@ -1,0 +1,61 @@
+#pragma once
+// A scene's system made runnable by any method: sympl tables, the classic
+// steppers, Boost.Odeint's runge_kutta4 and controlled runge_kutta_dopri5.
+// Everything is type-erased over std::vector<double> states (q then p), so the
+// program can hold all systems in one list; the runs themselves use sympl's
+// templates on dynamic-size states.
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "scene.hpp"
+
+namespace sympl::app {
+
+struct run_request {
+    double dt = 0;                        // fixed-step methods
+    double tolerance = 0;                 // odeint_dopri5 (absolute = relative)
+    bool energy = false;                  // track the max relative energy error
+    std::size_t energy_series_every = 0;  // record (t, energy error) every k steps
+    std::size_t trajectory_every = 0;     // write t, q, p every k steps to *trajectory
+    std::ostream* trajectory = nullptr;
+    int timing_repeats = 1;               // wall time: best of this many unobserved runs (0: no timing)
+};
+
+struct run_result {
+    bool stable = true;
+    std::size_t blowup_step = 0;  // unstable: the step that produced a non-finite state
+    double blowup_time = 0;       // and the time it started from
+    std::string failure;          // unstable: the message
+    std::size_t steps = 0;
+    std::uint64_t force_evaluations = 0;
+    double seconds = -1;            // best wall time (-1: not timed)
+    double max_energy_error = -1;   // -1: not measured (or no energy: not Hamiltonian)
+    std::vector<double> final_state;
+    std::vector<std::pair<double, double>> energy_series;
+};
+
+struct problem {
+    std::string system;
+    bool hamiltonian = true;
+    std::size_t degrees_of_freedom = 0;
+    std::vector<double> x0;  // q then p
+    // Exact state at time t (from x0 at t0 = 0); empty when there is none.
+    std::function<std::vector<double>(double t)> exact;
+    std::function<double(const std::vector<double>&)> energy;  // empty when not Hamiltonian
+    std::function<run_result(const method_spec&, const run_request&, double t0, double t_end,
+                             const std::vector<double>& x0)>
+        run;
+    // A reference at t_end from Sofroniou-Spaletta 10 in long double with step dt.
+    std::function<std::vector<double>(double t0, double t_end, double dt, const std::vector<double>& x0)> reference;
+};
+
+problem make_problem(const scene& s);
+
+// max_i |a_i - b_i| / max_i |b_i|
+double relative_difference(const std::vector<double>& a, const std::vector<double>& b);
+
+}  // namespace sympl::app

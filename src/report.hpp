@@ -1,0 +1,26 @@
+#pragma once
+// `sympl run` and `sympl report`: one scene's summary, and the work-precision
+// study (CSV, gnuplot PNGs, summary.md) with the stiff and extreme cases.
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "scene.hpp"
+
+namespace sympl::app {
+
+// Runs every method of the scene at its first step size (or tolerance),
+// prints the summary and writes the outputs the scene asks for.
+void run_scene(const scene& s, bool json, std::ostream& out);
+
+struct report_options {
+    std::string out_dir = "sympl-report";
+    bool quick = false;
+    bool studies = true;   // stability map, Kepler e = 0.99, long run, extreme scales
+    bool plots = true;     // PNGs with gnuplot when it is installed
+};
+
+// The study over `scenes`; writes into options.out_dir and prints a short table.
+void run_report(const std::vector<scene>& scenes, const report_options& options, std::ostream& out);
+
+}  // namespace sympl::app
