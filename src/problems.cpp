@@ -7,6 +7,7 @@
 #include <limits>
 #include <ostream>
 #include <type_traits>
+#include <utility>
 
 #include <sympl/sympl.hpp>
 #include <sympl/odeint.hpp>
@@ -331,6 +332,17 @@ problem assemble(const scene& s, Sys sys, std::vector<double> x0, std::function<
         };
     }
     p.run = runner<Sys>(sys, p.energy);
+    p.unsupported = [](const method_spec& m) -> std::string {
+        using E = decltype(equations_of<State>(std::declval<Sys>()));
+        if (m.kind == method_kind::table && !separable_hamiltonian<Sys, Vec>)
+            return "is a splitting table; this system is not Hamiltonian (use a classic method)";
+        if (m.kind != method_kind::classic) return "";
+        if (m.name == "leapfrog_two_step" && !newtonian_form<E>)
+            return "needs Newton's form x'' = a(x, v, t); this system is Hamiltonian (use velocity_verlet)";
+        if (m.name == "damped_leapfrog" && !damped_newtonian_form<E, State>)
+            return "needs a force split as F(x, t) - G(v); only damped_oscillator has one";
+        return "";
+    };
     return p;
 }
 

@@ -49,6 +49,8 @@ struct problem {
     std::function<run_result(const method_spec&, const run_request&, double t0, double t_end,
                              const std::vector<double>& x0)>
         run;
+    // Why `method` cannot run on this system ("" when it can).
+    std::function<std::string(const method_spec&)> unsupported;
     // A reference at t_end from Sofroniou-Spaletta 10 in long double with step dt.
     std::function<std::vector<double>(double t0, double t_end, double dt, const std::vector<double>& x0)> reference;
 };

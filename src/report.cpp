@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iomanip>
 #include <iostream>
 #include <map>
@@ -80,13 +81,73 @@ struct reference_state {
     std::string kind;
 };
 
-reference_state make_reference(const scene& s, const problem& p) {
+reference_state make_reference(const scene& s, const problem& p, const fs::path& cache = {}) {
     if (p.exact) return {p.exact(s.t_end - s.t0), 0.0, "exact"};
     const double dt = *std::min_element(s.dt.begin(), s.dt.end()) / 4;
+    const std::string kind =
+        p.hamiltonian ? "sofroniou_spaletta_10, long double, dt = " + fmt(dt) : "rk4, dt = " + fmt(dt);
+    // Cached on disk under a key of everything the reference depends on.
+    std::ostringstream key;
+    key << std::setprecision(17) << s.system << ';' << s.t0 << ';' << s.t_end << ';' << dt;
+    for (const auto& [k, v] : s.parameters) key << ';' << k << '=' << v;
+    for (double v : p.x0) key << ';' << v;
+    const fs::path file =
+        cache.empty() ? fs::path() : cache / ("reference_" + std::to_string(std::hash<std::string>{}(key.str())) + ".txt");
+    if (!file.empty() && fs::exists(file)) {
+        std::ifstream in(file);
+        std::string stored;
+        std::getline(in, stored);
+        reference_state r{{}, 0, kind + " (cached)"};
+        double v;
+        if (stored == key.str() && in >> r.error) {
+            while (in >> v) r.x.push_back(v);
+            if (r.x.size() == p.x0.size()) return r;
+        }
+    }
     const auto coarse = p.reference(s.t0, s.t_end, 2 * dt, p.x0);
     const auto fine = p.reference(s.t0, s.t_end, dt, p.x0);
-    return {fine, relative_difference(coarse, fine),
-            p.hamiltonian ? "sofroniou_spaletta_10, long double, dt = " + fmt(dt) : "rk4, dt = " + fmt(dt)};
+    reference_state r{fine, relative_difference(coarse, fine), kind};
+    if (!file.empty()) {
+        fs::create_directories(cache);
+        atomic_file out(file);
+        out.stream() << key.str() << "\n" << std::setprecision(17) << r.error << "\n";
+        for (double v : r.x) out.stream() << v << "\n";
+        out.commit();
+    }
+    return r;
+}
+
+// Relative change of the area of a small loop around x0 in the (q_0, p_0)
+// plane, carried by the method (-1 when the run is unstable).
+double loop_area_error(const problem& p, const method_spec& m, run_request rq, double t0, double t_end) {
+    rq.energy = false;
+    rq.timing_repeats = 0;
+    rq.trajectory = nullptr;
+    rq.trajectory_every = rq.energy_series_every = 0;
+    const std::size_t n = p.degrees_of_freedom;
+    const double r = 0.05 * std::max(1.0, std::hypot(p.x0[0], p.x0[n])), pi = std::acos(-1.0);
+    using State = phase_space<double>;
+    const auto to_state = [n](const std::vector<double>& v) {
+        State x(static_cast<Eigen::Index>(n));
+        for (std::size_t i = 0; i < n; ++i) x.q[i] = v[i], x.p[i] = v[n + i];
+        return x;
+    };
+    const auto circle = [&](double s) {
+        std::vector<double> v = p.x0;
+        v[0] += r * std::cos(2 * pi * s);
+        v[n] += r * std::sin(2 * pi * s);
+        return to_state(v);
+    };
+    bool stable = true;
+    const auto flow = [&](State& x) {
+        std::vector<double> v(2 * n);
+        for (std::size_t i = 0; i < n; ++i) v[i] = x.q[i], v[n + i] = x.p[i];
+        const run_result res = p.run(m, rq, t0, t_end, v);
+        if (!res.stable) stable = false;
+        else x = to_state(res.final_state);
+    };
+    const auto loop = carry_loop(circle, flow, {64, 4096, r / 16});  // polygon error ~ (1/16)^2/6 ~ 7e-4
+    return stable ? std::fabs(loop_area(loop, 0) - pi * r * r) / (pi * r * r) : -1;
 }
 
 struct row {
@@ -94,6 +155,7 @@ struct row {
     double dt = 0, tolerance = 0;
     run_result r;
     double final_error = -1;
+    double loop_area_error = -1;  // only where the scene asks for it
 };
 
 const char* kind_name(method_kind k) {
@@ -372,11 +434,11 @@ void energy_series_study(const std::vector<scene>& scenes, const fs::path& dir, 
     gp << "set terminal pngcairo size 900,600\nset output '" << (dir / "energy_vs_time.png").string() << "'\n"
        << "set datafile separator ','\nset logscale y\nset format y '10^{%L}'\nset xlabel 't'\n"
        << "set ylabel 'relative energy error'\nset title '" << chosen->name << ": dt = " << fmt(dt)
-       << " (dopri5: tolerance 1e-8)'\nset key outside\n";
+       << " (dopri5: tolerance 1e-8)' noenhanced\nset key outside noenhanced\n";
     gp << "plot ";
     for (std::size_t i = 0; i < names.size(); ++i)
         gp << (i ? ", " : "") << "'" << (dir / "energy_vs_time.csv").string() << "' using ($1 eq '" << names[i]
-           << "' ? $2 : NaN):($3 > 0 ? $3 : NaN) with lines title '" << names[i] << "'";
+           << "' ? $2 : NaN):($3 > 0 ? $3 : NaN) with lines title '" << names[i] << "' noenhanced";
     gp << "\n";
     gp.close();
     std::system(("gnuplot '" + (dir / "energy_vs_time.gp").string() + "' 2>/dev/null").c_str());
@@ -405,10 +467,10 @@ void plot_work_precision(const std::vector<row>& rows, const std::vector<scene>&
             d << "\n\n";
             methods.push_back(m.name);
         }
-        gp << "set title '" << s.name << "'\nplot ";
+        gp << "set title '" << s.name << "' noenhanced\nplot ";
         for (std::size_t i = 0; i < methods.size(); ++i)
             gp << (i ? ", " : "") << "'" << data.string() << "' index " << i << " with linespoints title '" << methods[i]
-               << "'";
+               << "' noenhanced";
         gp << "\n";
     }
     gp << "unset multiplot\n";
@@ -418,12 +480,23 @@ void plot_work_precision(const std::vector<row>& rows, const std::vector<scene>&
 
 }  // namespace
 
+namespace {
+// Every method must run on the system before anything runs or is written.
+void check_methods(const scene& s, const problem& p) {
+    for (const method_spec& m : s.methods)
+        if (const std::string why = p.unsupported(m); !why.empty())
+            throw scene_error(s.source + ": method '" + m.name + "' " + why);
+}
+}  // namespace
+
 void run_scene(const scene& s, bool json, std::ostream& out) {
     const problem p = make_problem(s);
+    check_methods(s, p);
     const reference_state ref = make_reference(s, p);
     const fs::path dir = s.output.directory;
     fs::create_directories(dir);
     std::vector<std::string> lines;
+    std::vector<std::unique_ptr<atomic_file>> files;  // committed together at the end
     for (const method_spec& m : s.methods) {
         run_request rq;
         rq.dt = s.dt.front();
@@ -441,8 +514,9 @@ void run_scene(const scene& s, bool json, std::ostream& out) {
             rq.trajectory_every = s.output.trajectory_every;
         }
         const run_result r = p.run(m, rq, s.t0, s.t_end, p.x0);
-        if (trajectory) trajectory->commit();
+        if (trajectory) files.push_back(std::move(trajectory));
         const double fin = r.stable ? relative_difference(r.final_state, ref.x) : -1;
+        const double area = r.stable && s.output.loop_area ? loop_area_error(p, m, rq, s.t0, s.t_end) : -1;
         std::ostringstream l;
         if (json) {
             l << "{\"scene\": \"" << s.name << "\", \"method\": \"" << m.name << "\", \"status\": \""
@@ -451,6 +525,7 @@ void run_scene(const scene& s, bool json, std::ostream& out) {
             l << ", \"steps\": " << r.steps << ", \"force_evaluations\": " << r.force_evaluations;
             if (r.max_energy_error >= 0) l << ", \"max_energy_error\": " << r.max_energy_error;
             if (fin >= 0) l << ", \"final_error\": " << fin;
+            if (area >= 0) l << ", \"loop_area_error\": " << area;
             l << ", \"reference\": \"" << ref.kind << "\", \"seconds\": " << std::max(r.seconds, 0.0);
             if (s.output.final_state && r.stable) {
                 l << ", \"final_state\": [";
@@ -466,6 +541,7 @@ void run_scene(const scene& s, bool json, std::ostream& out) {
                 l << std::right << std::setw(10) << r.steps << " steps" << std::setw(12) << r.force_evaluations
                   << " forces   energy error " << std::setw(10) << (r.max_energy_error >= 0 ? fmt(r.max_energy_error, 3) : "-")
                   << "   final error " << std::setw(10) << fmt(fin, 3) << "   " << fmt(r.seconds * 1e3, 3) << " ms";
+                if (area >= 0) l << "   loop area error " << fmt(area, 3);
                 if (s.output.final_state) {
                     l << "\n    final state:";
                     for (double v : r.final_state) l << " " << std::setprecision(17) << v;
@@ -474,6 +550,7 @@ void run_scene(const scene& s, bool json, std::ostream& out) {
         }
         lines.push_back(l.str());
     }
+    for (auto& f : files) f->commit();
     if (json) {
         out << "[\n";
         for (std::size_t i = 0; i < lines.size(); ++i) out << "  " << lines[i] << (i + 1 < lines.size() ? ",\n" : "\n");
@@ -494,12 +571,13 @@ void run_report(const std::vector<scene>& scenes, const report_options& options,
     std::vector<row> rows;
     std::map<std::string, reference_state> references;
     const int repeats = options.quick ? 2 : 5;
+    for (const scene& s : scenes) check_methods(s, make_problem(s));  // before anything runs
     for (std::size_t k = 0; k < scenes.size(); ++k) {
         const scene& s = scenes[k];
         const std::string head = "[" + std::to_string(k + 1) + "/" + std::to_string(scenes.size()) + "] " + s.name;
         bar.show(head + ": reference");
         const problem p = make_problem(s);
-        const reference_state& ref = references[s.name] = make_reference(s, p);
+        const reference_state& ref = references[s.name] = make_reference(s, p, dir / "cache");
         for (const method_spec& m : s.methods) {
             const bool adaptive = m.kind == method_kind::odeint_dopri5;
             for (double v : adaptive ? s.tolerances : s.dt) {
@@ -512,6 +590,7 @@ void run_report(const std::vector<scene>& scenes, const report_options& options,
                 rq.timing_repeats = repeats;
                 r.r = p.run(m, rq, s.t0, s.t_end, p.x0);
                 if (r.r.stable) r.final_error = relative_difference(r.r.final_state, ref.x);
+                if (r.r.stable && s.output.loop_area) r.loop_area_error = loop_area_error(p, m, rq, s.t0, s.t_end);
                 rows.push_back(std::move(r));
             }
         }
@@ -519,7 +598,7 @@ void run_report(const std::vector<scene>& scenes, const report_options& options,
     {
         atomic_file csv(dir / "work_precision.csv");
         csv.stream() << "scene,method,kind,dt,tolerance,status,blowup_step,blowup_time,steps,force_evaluations,seconds,"
-                        "max_energy_error,final_error,reference_error\n";
+                        "max_energy_error,final_error,reference_error,loop_area_error\n";
         for (const row& r : rows) {
             const scene* s = nullptr;
             for (const scene& x : scenes)
@@ -536,7 +615,7 @@ void run_report(const std::vector<scene>& scenes, const report_options& options,
                          << (r.r.stable ? csv_number(r.r.seconds) : "") << ","
                          << (r.r.stable ? csv_number(r.r.max_energy_error) : "") << ","
                          << (r.r.stable ? csv_number(r.final_error) : "") << "," << fmt(references[r.scene].error, 3)
-                         << "\n";
+                         << "," << csv_number(r.loop_area_error) << "\n";
         }
         csv.commit();
     }

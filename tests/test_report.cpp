@@ -2,6 +2,7 @@
 // unstable runs reported as such, and `run` writing only what is asked for.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -49,7 +50,7 @@ t_end = 10
     REQUIRE(rows.size() == 1 + 4 * 4 + 2);
     CHECK(rows[0] == std::vector<std::string>{"scene", "method", "kind", "dt", "tolerance", "status", "blowup_step",
                                               "blowup_time", "steps", "force_evaluations", "seconds", "max_energy_error",
-                                              "final_error", "reference_error"});
+                                              "final_error", "reference_error", "loop_area_error"});
     std::map<std::string, std::vector<double>> errors;
     for (std::size_t i = 1; i < rows.size(); ++i) {
         REQUIRE(rows[i].size() == rows[0].size());
@@ -103,10 +104,80 @@ TEST_CASE("run: writes the trajectory it is asked for and nothing else") {
     CHECK(out.str().find("\"steps\": 100") != std::string::npos);
     CHECK(out.str().find("\"final_state\": [") != std::string::npos);
     const auto rows = read_csv(dir / "run.toml_blanes_moan_s6_trajectory.csv");
+    CHECK(out.str().find("loop_area_error") == std::string::npos);  // not asked for: not computed
     CHECK(rows.size() == 1 + 11);  // header, t = 0.0, 0.1, ..., 1.0
     CHECK(rows[0].size() == 5);
     std::size_t files = 0;
     for (const auto& entry : fs::directory_iterator(dir)) files += entry.is_regular_file();
     CHECK(files == 1);
+    fs::remove_all(dir);
+}
+
+TEST_CASE("run: the loop area a scene asks for: kept by a symplectic table, lost by RK4 at a coarse step") {
+    const scene s = parse_scene("system = \"pendulum\"\nmethods = [\"leapfrog_kdk\", \"rk4\"]\ndt = 0.5\nt_end = 200\n"
+                                "[output]\nloop_area = true\nenergy_error = false\n",
+                                "area.toml");
+    std::ostringstream out;
+    run_scene(s, true, out);
+    const std::string text = out.str();
+    const auto value = [&](const std::string& method) {
+        const auto at = text.find("\"loop_area_error\": ", text.find("\"method\": \"" + method + "\""));
+        return std::stod(text.substr(at + 19));
+    };
+    CHECK(value("leapfrog_kdk") < 2e-3);      // within the polygon's resolution (max_gap r/16)
+    CHECK(value("rk4") > 10 * value("leapfrog_kdk"));  // RK4 at dt = 0.5 loses area
+    CHECK(text.find("max_energy_error") == std::string::npos);
+}
+
+TEST_CASE("report: a method the system cannot run stops everything before anything is written") {
+    const fs::path dir = fs::temp_directory_path() / "sympl_test_unsupported";
+    fs::remove_all(dir);
+    const scene ok = parse_scene("system = \"pendulum\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.1\nt_end = 1\n", "ok.toml");
+    const scene bad = parse_scene("system = \"damped_oscillator\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.1\nt_end = 1\n",
+                                  "bad.toml");
+    std::ostringstream out;
+    CHECK_THROWS_WITH_AS(run_report({ok, bad}, {dir.string(), true, false, false}, out),
+                         "bad.toml: method 'leapfrog_kdk' is a splitting table; this system is not Hamiltonian (use a "
+                         "classic method)",
+                         scene_error);
+    CHECK_FALSE(fs::exists(dir / "work_precision.csv"));
+    const scene two_step =
+        parse_scene("system = \"pendulum\"\nmethods = [\"leapfrog_two_step\"]\ndt = 0.1\nt_end = 1\n", "two.toml");
+    CHECK_THROWS_WITH_AS(run_scene(two_step, false, out), doctest::Contains("needs Newton's form"), scene_error);
+    fs::remove_all(dir);
+}
+
+TEST_CASE("report: the stiff and extreme studies (stability map, Kepler e = 0.99, long run, scales)") {
+    const fs::path dir = fs::temp_directory_path() / "sympl_test_studies";
+    fs::remove_all(dir);
+    const scene s = parse_scene("system = \"harmonic_oscillator\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.1\nt_end = 1\n",
+                                "tiny.toml");
+    std::ostringstream out;
+    run_report({s}, {dir.string(), true, true, false}, out);
+    // Stability: every table is stable up to its computed interval; leapfrog's limit is 2, RK4's 2 sqrt(2).
+    const auto stability = read_csv(dir / "stability.csv");
+    REQUIRE(stability.size() > 20);
+    for (std::size_t i = 1; i < stability.size(); ++i) {
+        CAPTURE(stability[i][0]);
+        const double theory = std::stod(stability[i][1]), measured = std::stod(stability[i][2]);
+        CHECK(measured >= 0.99 * theory);
+        if (stability[i][0] == "leapfrog_kdk") CHECK(measured == doctest::Approx(2).epsilon(0.01));
+        if (stability[i][0] == "rk4 (classic)") CHECK(measured == doctest::Approx(2 * std::sqrt(2.0)).epsilon(0.01));
+        if (stability[i][0] == "leapfrog_kdk") CHECK(std::stod(stability[i][3]) == doctest::Approx(2).epsilon(0.03));
+    }
+    // Extreme scales: the same relative errors at L = 1e-20, 1 and 1e20.
+    const auto scales = read_csv(dir / "extreme_scales.csv");
+    REQUIRE(scales.size() >= 4);
+    for (int row : {1, 3}) {
+        CHECK(std::stod(scales[row][1]) == doctest::Approx(std::stod(scales[2][1])).epsilon(0.02));
+        CHECK(std::stod(scales[row][2]) == doctest::Approx(std::stod(scales[2][2])).epsilon(0.02));
+    }
+    // Long run: compensated summation ends below the plain sum.
+    const auto long_run = read_csv(dir / "long_run.csv");
+    CHECK(std::stod(long_run.back()[2]) < std::stod(long_run.back()[1]));
+    // Kepler e = 0.99: the adaptive Euler-Richardson row is there and finite.
+    const auto kepler = read_csv(dir / "kepler_e0.99.csv");
+    CHECK(kepler.back()[0] == "adaptive euler_richardson");
+    CHECK(std::stod(kepler.back()[4]) < 1e-5);
     fs::remove_all(dir);
 }
