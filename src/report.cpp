@@ -182,6 +182,16 @@ double time_to_reach(const std::vector<row>& rows, const std::string& scene, con
 
 bool have_gnuplot() { return std::system("gnuplot --version > /dev/null 2>&1") == 0; }
 
+// Runs a gnuplot script; a failure is said on stderr and leaves no empty PNG.
+void run_gnuplot(const fs::path& script, const fs::path& png) {
+    if (std::system(("gnuplot '" + script.string() + "' 2>/dev/null").c_str()) != 0 || !fs::exists(png) ||
+        fs::file_size(png) == 0) {
+        std::error_code ec;
+        fs::remove(png, ec);
+        std::cerr << "sympl: gnuplot could not draw " << png.string() << " (script: " << script.string() << ")\n";
+    }
+}
+
 std::string safe(const std::string& s) {
     std::string out = s;
     for (char& c : out)
@@ -437,11 +447,11 @@ void energy_series_study(const std::vector<scene>& scenes, const fs::path& dir, 
        << " (dopri5: tolerance 1e-8)' noenhanced\nset key outside noenhanced\n";
     gp << "plot ";
     for (std::size_t i = 0; i < names.size(); ++i)
-        gp << (i ? ", " : "") << "'" << (dir / "energy_vs_time.csv").string() << "' using ($1 eq '" << names[i]
+        gp << (i ? ", " : "") << "'" << (dir / "energy_vs_time.csv").string() << "' using (strcol(1) eq '" << names[i]
            << "' ? $2 : NaN):($3 > 0 ? $3 : NaN) with lines title '" << names[i] << "' noenhanced";
     gp << "\n";
     gp.close();
-    std::system(("gnuplot '" + (dir / "energy_vs_time.gp").string() + "' 2>/dev/null").c_str());
+    run_gnuplot(dir / "energy_vs_time.gp", dir / "energy_vs_time.png");
 }
 
 void plot_work_precision(const std::vector<row>& rows, const std::vector<scene>& scenes, const fs::path& dir) {
@@ -475,7 +485,7 @@ void plot_work_precision(const std::vector<row>& rows, const std::vector<scene>&
     }
     gp << "unset multiplot\n";
     gp.close();
-    std::system(("gnuplot '" + (dir / "work_precision.gp").string() + "' 2>/dev/null").c_str());
+    run_gnuplot(dir / "work_precision.gp", dir / "work_precision.png");
 }
 
 }  // namespace
