@@ -49,7 +49,9 @@ public:
         run(x, dt, 1, false);
     }
 
-    // n consecutive steps: forces and velocities carried over between steps.
+    // n consecutive steps: forces and velocities carried over between steps,
+    // and a step's last sub-step joined with the next step's first when they
+    // are of one kind (the result differs from n calls of step() by rounding only).
     void steps(State& x, scalar dt, std::size_t n) {
         check_step(x, dt);
         run(x, dt, n, false);
