@@ -15,6 +15,7 @@
 #include <CLI/CLI.hpp>
 
 #include <sympl/sympl.hpp>
+#include <sympl/table_order.hpp>
 
 #include "report.hpp"
 #include "scene.hpp"

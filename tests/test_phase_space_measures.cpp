@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include <Eigen/LU>  // determinant()
+
 #include <sympl/sympl.hpp>
 #include <sympl/odeint.hpp>
 #include <sympl/hamiltonians/harmonic_oscillator.hpp>

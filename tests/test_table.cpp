@@ -8,6 +8,7 @@
 #include <boost/numeric/odeint.hpp>
 
 #include <sympl/sympl.hpp>
+#include <sympl/table_order.hpp>
 #include <sympl/hamiltonians/pendulum.hpp>
 
 using namespace sympl;

@@ -95,6 +95,14 @@ public:
     // Claimed order (0 when unknown, e.g. a user's table); measure_order() checks it.
     int order() const { return order_; }
     const std::string& citation() const { return citation_; }
+    // What kind of design it is ("composition", "splitting", "RKN", ...): shown
+    // by `sympl tables` so that a user can choose; empty for a user's table.
+    const std::string& family() const { return family_; }
+    table with_family(std::string family) const {
+        table t = *this;
+        t.family_ = std::move(family);
+        return t;
+    }
     kinetic_requirement requirement() const { return requirement_; }
     bool needs_quadratic_kinetic() const { return requirement_ == kinetic_requirement::quadratic; }
 
@@ -211,6 +219,7 @@ private:
     int order_;
     std::string citation_;
     kinetic_requirement requirement_;
+    std::string family_;
 };
 
 // ---- Conversions ------------------------------------------------------------
