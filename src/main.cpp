@@ -4,6 +4,7 @@
 //   sympl run SCENE.toml [--json]    one scene: summary and the outputs it asks for
 //   sympl report [SCENE.toml ...] [--out DIR] [--quick]   the work-precision study
 // Invalid input: exit code 2 and one line on stderr.
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iomanip>
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include <sympl/sympl.hpp>
 #include <sympl/table_order.hpp>
@@ -22,57 +24,55 @@
 
 namespace {
 
-std::string json_escape(const std::string& s) {
-    std::string out;
-    for (char c : s) {
-        if (c == '"' || c == '\\') out += '\\';
-        out += c;
-    }
-    return out;
-}
+std::vector<double> as_doubles(const std::vector<sympl::coefficient>& c) { return {c.begin(), c.end()}; }
 
-std::string number(long double x, int digits = 21) {
+std::string fixed(double x, int digits) {
     std::ostringstream s;
-    s << std::setprecision(digits) << x;
+    s << std::fixed << std::setprecision(digits) << x;
     return s.str();
 }
 
-std::string json_list(const std::vector<sympl::coefficient>& c) {
-    std::string out = "[";
-    for (std::size_t i = 0; i < c.size(); ++i) out += (i ? ", " : "") + number(c[i]);
-    return out + "]";
+std::string scientific(double x, int digits) {
+    std::ostringstream s;
+    s << std::scientific << std::setprecision(digits) << x;
+    return s.str();
 }
 
 void print_tables(bool json) {
     const auto& all = sympl::catalog();
     if (json) {
-        std::cout << "[\n";
-        for (std::size_t i = 0; i < all.size(); ++i) {
-            const auto& t = all[i];
-            std::cout << "  {\"name\": \"" << t.name() << "\", \"order\": " << t.order() << ", \"stages\": " << t.stages()
-                      << ", \"force_evaluations\": " << t.force_evaluations()
-                      << ", \"symmetric\": " << (t.is_symmetric() ? "true" : "false")
-                      << ", \"needs_quadratic_T\": " << (t.needs_quadratic_kinetic() ? "true" : "false")
-                      << ", \"stability_interval\": " << number(t.stability_interval(), 6) << ", \"citation\": \""
-                      << json_escape(t.citation()) << "\", \"kick\": " << json_list(t.kick())
-                      << ", \"drift\": " << json_list(t.drift()) << "}" << (i + 1 < all.size() ? "," : "") << "\n";
-        }
-        std::cout << "]\n";
+        nlohmann::json out = nlohmann::json::array();
+        for (const auto& t : all)
+            out.push_back({{"name", t.name()},
+                           {"family", t.family()},
+                           {"order", t.order()},
+                           {"stages", t.stages()},
+                           {"force_evaluations", t.force_evaluations()},
+                           {"symmetric", t.is_symmetric()},
+                           {"needs_quadratic_T", t.needs_quadratic_kinetic()},
+                           {"stability_interval", t.stability_interval()},
+                           {"error_at_equal_cost", sympl::error_at_equal_cost(t)},
+                           {"citation", t.citation()},
+                           {"kick", as_doubles(t.kick())},
+                           {"drift", as_doubles(t.drift())}});
+        std::cout << out.dump(2) << "\n";
         return;
     }
     std::cout << "sympl catalog: each step does, for k = 0..M-1, p += kick[k]*dt*force(q), then q += drift[k]*dt*velocity(p)\n\n";
-    std::cout << std::left << std::setw(26) << "name" << std::right << std::setw(6) << "order" << std::setw(8) << "stages"
-              << std::setw(8) << "forces" << std::setw(10) << "symmetric" << std::setw(8) << "T=p^2" << std::setw(11)
-              << "stability" << "  citation\n";
+    std::cout << std::left << std::setw(25) << "name" << std::setw(16) << "family" << std::right << std::setw(6) << "order"
+              << std::setw(7) << "stages" << std::setw(7) << "forces" << std::setw(5) << "sym" << std::setw(7) << "T"
+              << std::setw(10) << "stability" << std::setw(11) << "error@300" << "  citation\n";
     for (const auto& t : all)
-        std::cout << std::left << std::setw(26) << t.name() << std::right << std::setw(6) << t.order() << std::setw(8)
-                  << t.stages() << std::setw(8) << t.force_evaluations() << std::setw(10)
-                  << (t.is_symmetric() ? "yes" : "no") << std::setw(8) << (t.needs_quadratic_kinetic() ? "needs" : "any")
-                  << std::setw(11) << std::fixed << std::setprecision(3) << t.stability_interval() << std::defaultfloat
-                  << "  " << t.citation() << "\n";
-    std::cout << "\n" << all.size() << " methods. 'forces': force evaluations per step (the last force is reused);"
-              << " 'T=p^2': 'needs' = order holds only for quadratic kinetic energy;"
-              << " 'stability': largest omega*dt stable on the harmonic oscillator.\n";
+        std::cout << std::left << std::setw(25) << t.name() << std::setw(16) << t.family() << std::right << std::setw(6)
+                  << t.order() << std::setw(7) << t.stages() << std::setw(7) << t.force_evaluations() << std::setw(5)
+                  << (t.is_symmetric() ? "yes" : "no") << std::setw(7) << (t.needs_quadratic_kinetic() ? "p^2/2" : "any")
+                  << std::setw(10) << fixed(t.stability_interval(), 3) << std::setw(11)
+                  << scientific(sympl::error_at_equal_cost(t), 1) << "  " << t.citation() << "\n";
+    std::cout << "\n" << all.size() << " methods. forces: force evaluations per step (the last force is reused);"
+              << " T: 'p^2/2' = the order holds only for quadratic kinetic energy;"
+              << " stability: largest omega*dt stable on the harmonic oscillator;"
+              << " error@300: max error on the pendulum (q0 = 1.2, p0 = 0.3) at t = 3 with 300 force evaluations"
+              << " (to choose between methods: lower is better at equal cost).\n";
 }
 
 // "0.5,0.5" -> {0.5, 0.5}; a bad token names itself.
@@ -102,24 +102,46 @@ int check_table(const std::string& kick_text, const std::string& drift_text, con
                                                          : sympl::table("user", kick, drift);
     const auto quadratic = sympl::measure_order(t, sympl::order_problem::pendulum);
     const auto general = sympl::measure_order(t, sympl::order_problem::nonquadratic_kinetic);
+    const auto range = [](const sympl::order_measurement& m) {
+        return nlohmann::json{{"largest_difference", m.largest_difference},
+                              {"smallest_difference", m.smallest_difference},
+                              {"agreeing_slopes", m.agreeing},
+                              {"coefficient_rounding_below", m.rounding_level}};
+    };
     if (json) {
-        std::cout << "{\"stages\": " << t.stages() << ", \"force_evaluations\": " << t.force_evaluations()
-                  << ", \"symmetric\": " << (t.is_symmetric() ? "true" : "false") << ", \"order\": "
-                  << number(quadratic.order, 4) << ", \"order_general\": " << number(general.order, 4)
-                  << ", \"stability_interval\": " << number(t.stability_interval(), 6) << ", \"kick\": "
-                  << json_list(t.kick()) << ", \"drift\": " << json_list(t.drift()) << "}\n";
-    } else {
-        std::cout << "canonical table (kick first):\n  kick  = " << json_list(t.kick()) << "\n  drift = "
-                  << json_list(t.drift()) << "\n"
-                  << "stages             " << t.stages() << "\n"
-                  << "force_evaluations  " << t.force_evaluations() << "\n"
-                  << "symmetric          " << (t.is_symmetric() ? "yes" : "no") << "\n"
-                  << "order              " << std::fixed << std::setprecision(2) << quadratic.order
-                  << "   (measured on the pendulum, T = p^2/2)\n"
-                  << "order_general      " << general.order << "   (measured on the relativistic pendulum, T = sqrt(1+p^2))\n"
-                  << "stability_interval " << std::setprecision(4) << t.stability_interval()
-                  << "   (largest omega*dt stable on the harmonic oscillator)\n";
+        const nlohmann::json out = {{"stages", t.stages()},
+                                    {"force_evaluations", t.force_evaluations()},
+                                    {"symmetric", t.is_symmetric()},
+                                    {"order", std::round(quadratic.order * 1000) / 1000},
+                                    {"order_read", range(quadratic)},
+                                    {"order_general", std::round(general.order * 1000) / 1000},
+                                    {"order_general_read", range(general)},
+                                    {"stability_interval", t.stability_interval()},
+                                    {"error_at_equal_cost", sympl::error_at_equal_cost(t)},
+                                    {"kick", as_doubles(t.kick())},
+                                    {"drift", as_doubles(t.drift())}};
+        std::cout << out.dump() << "\n";
+        return 0;
     }
+    const auto where = [](const sympl::order_measurement& m) {
+        std::string w = "read where |x(dt) - x(dt/2)| fell from " + scientific(m.largest_difference, 1) + " to " +
+                        scientific(m.smallest_difference, 1) + " (" + std::to_string(m.agreeing) + " slopes agreeing";
+        if (m.rounding_level > 0)
+            w += "; below " + scientific(m.rounding_level, 1) + " the rounding of the coefficients sets the slope";
+        return w + ")";
+    };
+    std::cout << "canonical table (kick first):\n  kick  = " << nlohmann::json(as_doubles(t.kick())).dump()
+              << "\n  drift = " << nlohmann::json(as_doubles(t.drift())).dump() << "\n"
+              << "stages              " << t.stages() << "\n"
+              << "force_evaluations   " << t.force_evaluations() << "\n"
+              << "symmetric           " << (t.is_symmetric() ? "yes" : "no") << "\n"
+              << "order               " << fixed(quadratic.order, 2) << "   pendulum, T = p^2/2; " << where(quadratic) << "\n"
+              << "order_general       " << fixed(general.order, 2) << "   relativistic pendulum, T = sqrt(1+p^2); "
+              << where(general) << "\n"
+              << "stability_interval  " << fixed(t.stability_interval(), 4)
+              << "   largest omega*dt stable on the harmonic oscillator\n"
+              << "error_at_equal_cost " << scientific(sympl::error_at_equal_cost(t), 2)
+              << "   pendulum at t = 3 with 300 force evaluations\n";
     return 0;
 }
 

@@ -56,13 +56,26 @@ struct order_options {
     double agreement = 0.08;
 };
 
-// Reads the order from m.slopes (coarsest first): the coarsest three
-// consecutive slopes that agree, unless an agreeing pair (within 0.15, the
-// house threshold) read before them is higher by 1.5 or more. Then those three
-// are the rounding tail of the coefficients and the pair is the order.
-// Failing both, the finest slope read (converged = false).
+// Reads the order from m.slopes (coarsest first). First the rounding tail is
+// cut: a final run of slopes of at most 2.5, all below differences of 1e-14
+// (where no double-precision run looks, and where no method's own plateau
+// starts), after a slope higher by 1.5 or more; with it goes one slope in
+// transition. Then the order is the coarsest three agreeing slopes, or the
+// coarsest two within 0.15 (the house threshold), or the finest single slope
+// read (converged = false).
 inline order_measurement read_order(order_measurement m, const order_options& options) {
     const auto& s = m.slopes;
+    std::size_t usable = s.size();
+    std::size_t tail = s.size();
+    while (tail > 0 && s[tail - 1].slope <= 2.5 && s[tail - 1].difference < 1e-14) --tail;
+    double above = 0, tail_max = 0;
+    for (std::size_t k = 0; k < tail; ++k) above = std::max(above, s[k].slope);
+    for (std::size_t k = tail; k < s.size(); ++k) tail_max = std::max(tail_max, s[k].slope);
+    if (tail < s.size() && s.size() - tail >= 2 && tail > 0 && above >= tail_max + 1.5) {
+        usable = tail;
+        if (usable >= 2 && s[usable - 1].slope < s[usable - 2].slope - 0.5) --usable;  // in transition
+        m.rounding_level = s[tail].difference;
+    }
     const auto spread = [&](std::size_t i, std::size_t count) {
         double lo = s[i].slope, hi = s[i].slope;
         for (std::size_t k = i; k < i + count; ++k) lo = std::min(lo, s[k].slope), hi = std::max(hi, s[k].slope);
@@ -70,7 +83,7 @@ inline order_measurement read_order(order_measurement m, const order_options& op
     };
     const auto read = [&](std::size_t i, std::size_t count) {
         m.order = s[i + count / 2].slope;
-        m.converged = true;
+        m.converged = count > 1;
         m.agreeing = static_cast<int>(count);
         m.largest_difference = s[i].difference;
         m.smallest_difference = s[i + count - 1].difference;
@@ -78,22 +91,11 @@ inline order_measurement read_order(order_measurement m, const order_options& op
         m.smallest_dt = s[i + count - 1].dt;
         return m;
     };
-    std::size_t pair = s.size();  // the highest agreeing pair seen so far
-    for (std::size_t i = 0; i + 1 < s.size(); ++i) {
-        if (i + 2 < s.size() && spread(i, 3) <= options.agreement) {
-            if (pair < i && s[pair].slope >= s[i + 1].slope + 1.5) {
-                m.rounding_level = s[i].difference;
-                return read(pair, 2);
-            }
-            return read(i, 3);
-        }
-        if (spread(i, 2) <= 0.15 && (pair == s.size() || s[i].slope > s[pair].slope)) pair = i;
-    }
-    if (pair < s.size()) return read(pair, 2);
-    if (!s.empty()) {
-        read(s.size() - 1, 1);
-        m.converged = false;
-    }
+    for (std::size_t i = 0; i + 3 <= usable; ++i)
+        if (spread(i, 3) <= options.agreement) return read(i, 3);
+    for (std::size_t i = 0; i + 2 <= usable; ++i)
+        if (spread(i, 2) <= 0.15) return read(i, 2);
+    if (usable > 0) return read(usable - 1, 1);
     return m;
 }
 
@@ -117,8 +119,9 @@ order_measurement measure_order(Run&& run, double t_end, const order_options& op
                 if (last_difference > 0)
                     m.slopes.push_back({d, t_end / static_cast<double>(n / 2), std::log2(last_difference / d)});
                 last_difference = d;
-                // Three agreeing slopes end the reading (and a rounding tail too).
-                if (const auto r = read_order(m, options); r.agreeing == 3 || r.rounding_level > 0) return r;
+                // Three agreeing slopes end the reading, unless they could be a rounding tail.
+                const order_measurement r = read_order(m, options);
+                if (r.agreeing == 3 && (r.order > 2.5 || r.smallest_difference >= 1e-14)) return r;
             }
         }
         previous = std::move(x);
