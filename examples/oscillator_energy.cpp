@@ -1,4 +1,4 @@
-// The seed's oscillator test (seed 001, "Test: same oscillator as before"):
+// Sandvik's oscillator test (Sandvik's lecture notes, "Test: same oscillator as before"):
 // Euler, the leapfrog (velocity Verlet) and RK4 on x'' = -x from x = 1, v = 0,
 // at dt = 0.1 and 0.01, printing the relative energy error at t = 10, 100, 1000.
 // Euler's error grows exponentially, RK4's drifts linearly in time, the

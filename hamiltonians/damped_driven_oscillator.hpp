@@ -3,7 +3,7 @@
 // in any dimension: not Hamiltonian, so it runs with the classic steppers
 // (classic_steppers.hpp) only. Newton's form (q = x, p = v), with the force
 // split as F(x, t) = -k x + F0 cos(Omega t) and drag G(v) = b v for the damped
-// leapfrog (seed 001). The exact solution covers every regime: under-, over-
+// leapfrog (Sandvik's lecture notes). The exact solution covers every regime: under-, over-
 // and critically damped, undamped, and undamped at resonance.
 #include <cmath>
 
@@ -27,7 +27,7 @@ struct damped_driven_oscillator {
         out = (x * T(-stiffness) - v * T(damping)) / T(mass);
         out.array() += T(drive_amplitude) * cos(T(drive_frequency) * t) / T(mass);
     }
-    // F(x, t) and G(v), m a = F - G (seed 001).
+    // F(x, t) and G(v), m a = F - G (Sandvik's lecture notes).
     template <class V, class T> void force(const V& x, T t, V& out) const {
         using std::cos;
         out = x * T(-stiffness);

@@ -1,6 +1,6 @@
 #pragma once
 // Harmonic oscillator H = |p|^2/(2m) + m omega^2 |q|^2 / 2, any dimension.
-// The seed's test system (seed 001, "same oscillator as before"), with its exact flow.
+// Sandvik's test system (Sandvik's lecture notes, "same oscillator as before"), with its exact flow.
 #include <cmath>
 
 #include <sympl/phase_space.hpp>

@@ -1,5 +1,5 @@
 #pragma once
-// The seed's two particles A and B in the plane joined by a spring (seed 002,
+// Gould & Tobochnik's two particles A and B in the plane joined by a spring (Gould & Tobochnik ch. 3,
 // eq. 3.72): q = (x_A, y_A, x_B, y_B),
 //     H = |p|^2/(2m) + k/2 [(q1 - q3)^2 + (q2 - q4)^2],
 // with its exact solution: the centre of mass moves uniformly and the relative
@@ -11,7 +11,7 @@
 namespace sympl::hamiltonians {
 
 struct two_particle_spring {
-    double mass = 1.0;       // each particle (the seed takes unit mass)
+    double mass = 1.0;       // each particle (Gould & Tobochnik take unit mass)
     double stiffness = 1.0;  // k
 
     template <class V> auto kinetic(const V& p) const { return p.squaredNorm() / (2 * mass); }

@@ -1,4 +1,4 @@
-// The adaptive Euler-Richardson driver (seed 000, after eq. 3.44) on Kepler
+// The adaptive Euler-Richardson driver (Gould & Tobochnik, after eq. 3.44) on Kepler
 // with e = 0.9: it meets its tolerance with fewer steps than the best fixed step.
 #include <doctest/doctest.h>
 

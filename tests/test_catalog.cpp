@@ -80,13 +80,13 @@ TEST_CASE("catalog: adjoint(adjoint(t)) == t, and symmetric entries are their ow
     }
 }
 
-TEST_CASE("catalog: the seed's Verlet table is velocity Verlet") {
-    // seed 002 eq. 3.75: M = 2, a = (1, 1), b = (2, 0) reduces to eq. 3.48.
+TEST_CASE("catalog: Gould & Tobochnik's Verlet table is velocity Verlet") {
+    // Gould & Tobochnik eq. 3.75: M = 2, a = (1, 1), b = (2, 0) reduces to eq. 3.48.
     CHECK(method("verlet_seed") == method("leapfrog_kdk"));
     splitting_stepper<hamiltonians::pendulum, State1> seed({}, method("verlet_seed"));
     State1 x(V1(1.0), V1(0.2)), y = x;
     seed.steps(x, 0.05, 100);
-    const auto verlet_by_hand = [](State1& s, double dt) {  // seed 000 eq. 3.48
+    const auto verlet_by_hand = [](State1& s, double dt) {  // Gould & Tobochnik eq. 3.48
         const double a0 = -std::sin(s.q[0]);
         s.q[0] += s.p[0] * dt + 0.5 * a0 * dt * dt;
         s.p[0] += 0.5 * (a0 - std::sin(s.q[0])) * dt;

@@ -1,4 +1,4 @@
-// The claims the seed texts make about their classic algorithms, measured:
+// The claims Gould & Tobochnik (ch. 3) and Sandvik's lecture notes make about their classic algorithms, measured:
 // orders, bounded or growing energy error, time reversal, the error estimate,
 // the self-starting steps, and clear errors on bad input.
 #include <doctest/doctest.h>
@@ -20,13 +20,13 @@ using V1 = Eigen::Matrix<double, 1, 1>;
 const State start(V1(1.2), V1(0.3));
 const hamiltonians::harmonic_oscillator oscillator{};
 const hamiltonians::pendulum pendulum{};
-// Damped and driven (seed 001's friction case, with time dependence).
+// Damped and driven (Sandvik's friction case, with time dependence).
 const hamiltonians::damped_driven_oscillator damped{1.0, 1.0, 0.3, 0.5, 0.7};
 // The undamped oscillator in Newton's form, and the pendulum in Newton's form.
 const hamiltonians::damped_driven_oscillator newton_oscillator{};
 const auto newton_pendulum = make_newtonian([](const auto& x, auto) { return (-x.array().sin()).matrix().eval(); });
 
-// A damped pendulum with the split m a = F(x) - G(v) of seed 001.
+// A damped pendulum with the split m a = F(x) - G(v) of Sandvik's lecture notes.
 struct damped_pendulum {
     double mass = 1.0, b = 0.4;
     static constexpr bool p_is_velocity = true;
@@ -76,10 +76,10 @@ double max_energy_error(const System& system, double dt, std::size_t n) {
 }
 }  // namespace
 
-TEST_CASE("classic: measured global orders match the seeds' theory on oscillator, pendulum and damped oscillator") {
+TEST_CASE("classic: measured global orders match the textbooks' theory on oscillator, pendulum and damped oscillator") {
     // Damped oscillator: the plain treatment of a velocity-dependent force,
     // a_n at v_{n-1/2} (half-step, two-step leapfrog, plain damped leapfrog),
-    // loses an order (seed 001).
+    // loses an order (Sandvik's lecture notes).
     struct expectation {
         const char* name;
         double oscillator, pendulum, damped;
@@ -120,7 +120,7 @@ TEST_CASE("classic: two-step leapfrog (eq. 3.47) is second order; plain velocity
     CHECK(std::fabs(order_on<leapfrog_two_step>(damped) - 1) <= 0.15);
 }
 
-TEST_CASE("classic: damped leapfrog, plain loses an order and the corrected procedure keeps 2 (seed 001)") {
+TEST_CASE("classic: damped leapfrog, plain loses an order and the corrected procedure keeps 2 (Sandvik's lecture notes)") {
     const auto plain = damping_treatment::plain, corrected = damping_treatment::corrected;
     CHECK(std::fabs(order_on<damped_leapfrog>(damped, plain) - 1) <= 0.15);
     CHECK(std::fabs(order_on<damped_leapfrog>(damped, corrected) - 2) <= 0.15);
@@ -141,7 +141,7 @@ TEST_CASE("classic: damped leapfrog converges to the exact damped, driven soluti
     CHECK(s.force_evaluations() == 5001);  // one F per step, plus the start
 }
 
-TEST_CASE("classic: leapfrog energy stays bounded over 1e6 steps while Euler's grows and RK4's drifts (seed 001)") {
+TEST_CASE("classic: leapfrog energy stays bounded over 1e6 steps while Euler's grows and RK4's drifts (Sandvik's lecture notes)") {
     for (const double h : {0.1, 0.01}) {
         CAPTURE(h);
         // Leapfrog on the oscillator conserves p^2 + (1 - h^2/4) q^2 exactly, so
@@ -209,7 +209,7 @@ TEST_CASE("classic: two-step leapfrog self-starts by eq. 3.45 and gives eqs. 3.4
         const State before = x;
         s.step(x, i * dt, dt);
         vv.step(y, i * dt, dt);
-        // The two forms are one algorithm (seed 000 after eq. 3.48): equal to roundoff.
+        // The two forms are one algorithm (Gould & Tobochnik, after eq. 3.48): equal to roundoff.
         CHECK(max_difference(x, y) < 1e-12);
         if (i == 0) CHECK(x.q[0] == doctest::Approx(before.q[0] + dt * before.p[0] - dt * dt / 2 * std::sin(before.q[0])).epsilon(1e-15));
     }

@@ -61,7 +61,7 @@ TEST_CASE("hamiltonian: autodiff gradients equal analytic ones on every ready-ma
         p << 3.0, -0.2, 0.7;
         check_gradients(hamiltonians::relativistic_pendulum{2.0, 1.5, 0.7}, q, p);
     }
-    SUBCASE("two particles joined by a spring (seed eq. 3.72)") {
+    SUBCASE("two particles joined by a spring (Gould & Tobochnik eq. 3.72)") {
         Eigen::Vector4d q(0.3, -1.0, 2.0, 0.5), p(1.0, 2.0, -0.5, 0.25);
         check_gradients(hamiltonians::two_particle_spring{1.5, 2.5}, q, p);
     }
@@ -98,7 +98,7 @@ TEST_CASE("hamiltonian: autodiff gradients equal analytic ones on every ready-ma
     }
 }
 
-TEST_CASE("hamiltonian: a pair of lambdas, energy, and Hamilton's equations (seed eq. 3.73)") {
+TEST_CASE("hamiltonian: a pair of lambdas, energy, and Hamilton's equations (Gould & Tobochnik eq. 3.73)") {
     auto h = make_hamiltonian([](const auto& p) { return 0.5 * p.squaredNorm(); },
                               [](const auto& q) { using std::cos; return 1.0 - cos(q[0]); });
     const phase_space<double, 1> x(Eigen::Matrix<double, 1, 1>(0.8), Eigen::Matrix<double, 1, 1>(-0.3));

@@ -1,4 +1,4 @@
-// Richardson extrapolation (seed 002, eq. 3.68): of a derivative, step by step
+// Richardson extrapolation (Gould & Tobochnik, eq. 3.68): of a derivative, step by step
 // around any fixed-step method, and of whole runs.
 #include <doctest/doctest.h>
 

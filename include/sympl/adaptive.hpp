@@ -1,6 +1,6 @@
 #pragma once
 // Adaptive step size from a local error estimate: Euler-Richardson's
-// |x2 - x1|, |v2 - v1| (seed 000, after eq. 3.44: "We can use these estimates
+// |x2 - x1|, |v2 - v1| (Gould & Tobochnik, after eq. 3.44: "We can use these estimates
 // to change the time step so that the error is always within some desired
 // level of precision").
 //

@@ -1,5 +1,5 @@
 #pragma once
-// The classic algorithms of the seed texts, on the same phase_space states as
+// The classic algorithms of Gould & Tobochnik (ch. 3) and Sandvik's lecture notes, on the same phase_space states as
 // the splitting stepper, for comparison and teaching:
 //   euler, euler_cromer, half_step (000 eq. 3.37), euler_richardson (3.43-3.44)
 //   = rk2 (midpoint, 001), rk4 (001), velocity_verlet (3.48),
@@ -126,7 +126,7 @@ private:
 template <class System, class State>
 using euler = classic_stepper<System, State, euler_rule>;
 
-// Euler-Cromer: the position moves with the new velocity (seed 002, eq. 3.74
+// Euler-Cromer: the position moves with the new velocity (Gould & Tobochnik, eq. 3.74
 // with M = 1); first order, energy bounded. Also catalog entry "euler_cromer".
 template <class State>
 struct euler_cromer_rule {
@@ -147,9 +147,9 @@ private:
 template <class System, class State>
 using euler_cromer = classic_stepper<System, State, euler_cromer_rule>;
 
-// Euler-Richardson (seed 000, eqs. 3.43-3.44): the step to the midpoint by
+// Euler-Richardson (Gould & Tobochnik, eqs. 3.43-3.44): the step to the midpoint by
 // Euler, then the whole step with the midpoint rates. Identical to the
-// second-order Runge-Kutta midpoint method (seed 001; 000 says so after 3.44),
+// second-order Runge-Kutta midpoint method (Sandvik's lecture notes; Gould & Tobochnik say so after eq. 3.44),
 // hence the alias rk2 below.
 //
 // Error estimate (the "bonus" after eq. 3.44): x1 is one Euler step
@@ -198,7 +198,7 @@ using euler_richardson = classic_stepper<System, State, euler_richardson_rule>;
 template <class System, class State>
 using rk2 = euler_richardson<System, State>;
 
-// Classic fourth-order Runge-Kutta for equations of motion (seed 001, "RK
+// Classic fourth-order Runge-Kutta for equations of motion (Sandvik's lecture notes, "RK
 // formulas for equations of motion"; friction enters through dp/dt).
 template <class State>
 struct rk4_rule {
@@ -222,12 +222,12 @@ struct rk4_rule {
     }
 
 private:
-    vector k_[4], l_[4], q_, p_;  // k: dp/dt, l: dq/dt (the seed's letters)
+    vector k_[4], l_[4], q_, p_;  // k: dp/dt, l: dq/dt (Sandvik's letters)
 };
 template <class System, class State>
 using rk4 = classic_stepper<System, State, rk4_rule>;
 
-// Velocity Verlet (seed 000, eq. 3.48): x_{n+1} = x_n + v_n dt + a_n dt^2/2,
+// Velocity Verlet (Gould & Tobochnik, eq. 3.48): x_{n+1} = x_n + v_n dt + a_n dt^2/2,
 // v_{n+1} = v_n + (a_n + a_{n+1}) dt/2, written in pair form as
 // half kick - drift - half kick (the KDK leapfrog). One force per step when
 // dp/dt does not depend on p (a_{n+1} is the next a_n). When it does,
@@ -262,12 +262,12 @@ private:
 template <class System, class State>
 using velocity_verlet = classic_stepper<System, State, velocity_verlet_rule>;
 
-// Half-step algorithm (seed 000, eq. 3.37): v_{n+1/2} = v_{n-1/2} + a_n dt,
+// Half-step algorithm (Gould & Tobochnik, eq. 3.37): v_{n+1/2} = v_{n-1/2} + a_n dt,
 // x_{n+1} = x_n + v_{n+1/2} dt, started with the Euler half step
 // v_{1/2} = v_0 + a_0 dt/2 (eq. 3.37c). The velocity reported at t_{n+1} is
 // v_{n+1/2} + a_{n+1} dt/2, where a_{n+1} is the force the next step needs
 // anyway: one force per step. A velocity-dependent a_n is taken at v_{n-1/2},
-// the plain treatment of seed 001, which costs an order (see damped_leapfrog).
+// the plain treatment of Sandvik's lecture notes, which costs an order (see damped_leapfrog).
 template <class State>
 struct half_step_rule {
     static constexpr const char* name = "half_step";
@@ -298,14 +298,14 @@ private:
 template <class System, class State>
 using half_step = classic_stepper<System, State, half_step_rule>;
 
-// Leapfrog in the two-step position form (seed 000, eq. 3.47a; seed 001):
+// Leapfrog in the two-step position form (Gould & Tobochnik, eq. 3.47a; Sandvik's lecture notes):
 // x_{n+1} = 2 x_n - x_{n-1} + a_n dt^2. Self-starting: a fresh start takes
 // x_{-1} from the backward Taylor step (eq. 3.45), which makes the first step
 // eq. 3.48a. The velocity reported with x_{n+1} is eq. 3.50,
 // (x_{n+1} - x_n)/dt + a_{n+1} dt/2 (a_{n+1} is the next step's a_n);
 // central_difference_velocity() is eq. 3.47b, v_n = (x_{n+1} - x_{n-1})/(2 dt).
 // A velocity-dependent a_n is taken at v_{n-1/2} = (x_n - x_{n-1})/dt, the
-// plain treatment of seed 001.
+// plain treatment of Sandvik's lecture notes.
 template <class State>
 struct leapfrog_two_step_rule {
     static constexpr const char* name = "leapfrog_two_step";
@@ -341,7 +341,7 @@ private:
 template <class System, class State>
 using leapfrog_two_step = classic_stepper<System, State, leapfrog_two_step_rule>;
 
-// Leapfrog with a velocity-dependent force m a = F(x, t) - G(v) (seed 001,
+// Leapfrog with a velocity-dependent force m a = F(x, t) - G(v) (Sandvik's lecture notes,
 // "Leapfrog/Verlet method including damping"), in the half-step form
 // v_{n+1/2} = v_{n-1/2} + a_n dt, x_{n+1} = x_n + v_{n+1/2} dt.
 //   plain:     a_n = [F(x_n, t_n) - G(v_{n-1/2})]/m; the O(dt) error of that
@@ -400,7 +400,7 @@ private:
 template <class System, class State>
 using damped_leapfrog = classic_stepper<System, State, damped_leapfrog_rule>;
 
-// Predictor-corrector (seed 002, eqs. 3.69-3.70): predict x_p = x_{n-1} + 2 v_n dt
+// Predictor-corrector (Gould & Tobochnik, eqs. 3.69-3.70): predict x_p = x_{n-1} + 2 v_n dt
 // (and likewise v_p = v_{n-1} + 2 a_n dt, for velocity-dependent forces), then
 // correct v_{n+1} = v_n + (a_p + a_n) dt/2, x_{n+1} = x_n + (v_{n+1} + v_n) dt/2,
 // and repeat with the corrected values until two successive positions and

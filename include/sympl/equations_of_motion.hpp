@@ -1,11 +1,11 @@
 #pragma once
 // Equations of motion in first-order pair form, for the classic algorithms of
-// the seed texts (classic_steppers.hpp):
+// Gould & Tobochnik (ch. 3) and Sandvik's lecture notes (classic_steppers.hpp):
 //     dq/dt = dq_dt(q, p, t),   dp/dt = dp_dt(q, p, t).
 // Newton's equations x'' = a(x, v, t) are the case q = x, p = v,
-// dq_dt = v, dp_dt = a (seed 001, "RK formulas for equations of motion");
+// dq_dt = v, dp_dt = a (Sandvik's lecture notes, "RK formulas for equations of motion");
 // a separable Hamiltonian is the case dq_dt = dT/dp, dp_dt = -dV/dq
-// (seed 002, eq. 3.73). Damping and driving enter through a(x, v, t).
+// (Gould & Tobochnik, eq. 3.73). Damping and driving enter through a(x, v, t).
 #include <concepts>
 #include <utility>
 
@@ -27,11 +27,11 @@ concept equations_of_motion =
     };
 
 // Newton's form: p is the velocity, dq/dt = p. The two-step leapfrog (eq. 3.47)
-// and the damped leapfrog (seed 001) exist only in this form.
+// and the damped leapfrog (Sandvik's lecture notes) exist only in this form.
 template <class E>
 concept newtonian_form = requires { requires E::p_is_velocity; };
 
-// Newton's form with the force split as m a = F(x, t) - G(v) (seed 001,
+// Newton's form with the force split as m a = F(x, t) - G(v) (Sandvik's lecture notes,
 // "Leapfrog/Verlet method including damping"): `force` writes F, `drag` writes G.
 template <class E, class State>
 concept damped_newtonian_form =
@@ -80,7 +80,7 @@ auto make_newtonian(Acceleration a) {
     return newtonian<Acceleration, !two_arguments>{std::move(a)};
 }
 
-// Hamilton's equations of a separable Hamiltonian (seed eq. 3.73) in pair form.
+// Hamilton's equations of a separable Hamiltonian (Gould & Tobochnik eq. 3.73) in pair form.
 template <class H>
 struct hamilton_equations {
     H hamiltonian;

@@ -1,6 +1,6 @@
 #pragma once
 // A separable Hamiltonian H(q, p) = T(p) + V(q) and Hamilton's equations
-// dq/dt = dT/dp, dp/dt = -dV/dq (seed 002, eqs. 3.71 and 3.73).
+// dq/dt = dT/dp, dp/dt = -dV/dq (Gould & Tobochnik, eqs. 3.71 and 3.73).
 //
 // A user type provides templated kinetic(p) and potential(q). It may also
 // provide the analytic gradients
@@ -86,7 +86,7 @@ void gradient(const Fn& fn, const Vec& x, Vec& out) {
 }
 }  // namespace detail
 
-// f = -dV/dq (seed eq. 3.73a), analytic when H provides it.
+// f = -dV/dq (Gould & Tobochnik eq. 3.73a), analytic when H provides it.
 template <class H, class Vec>
     requires separable_hamiltonian<H, Vec>
 void force(const H& h, const Vec& q, Vec& f) {
@@ -100,7 +100,7 @@ void force(const H& h, const Vec& q, Vec& f) {
     }
 }
 
-// v = dT/dp (seed eq. 3.73b), analytic when H provides it.
+// v = dT/dp (Gould & Tobochnik eq. 3.73b), analytic when H provides it.
 template <class H, class Vec>
     requires separable_hamiltonian<H, Vec>
 void velocity(const H& h, const Vec& p, Vec& v) {
@@ -113,14 +113,14 @@ void velocity(const H& h, const Vec& p, Vec& v) {
     }
 }
 
-// Total energy H(q, p) = T(p) + V(q) (seed eq. 3.71).
+// Total energy H(q, p) = T(p) + V(q) (Gould & Tobochnik eq. 3.71).
 template <class H, class S, int D>
     requires separable_hamiltonian<H, typename phase_space<S, D>::vector>
 S energy(const H& h, const phase_space<S, D>& x) {
     return S(h.kinetic(x.p)) + S(h.potential(x.q));
 }
 
-// Right-hand side of Hamilton's equations (seed eq. 3.73) for any other
+// Right-hand side of Hamilton's equations (Gould & Tobochnik eq. 3.73) for any other
 // integrator: dxdt.q = dT/dp, dxdt.p = -dV/dq.
 template <class H, class S, int D>
     requires separable_hamiltonian<H, typename phase_space<S, D>::vector>

@@ -1,5 +1,5 @@
 #pragma once
-// Measures of what a symplectic method preserves (seed 002, after eq. 3.73:
+// Measures of what a symplectic method preserves (Gould & Tobochnik, after eq. 3.73:
 // "the sum of the areas formed by the projection of the phase space volume onto
 // the planes q_i, p_i ... does not change with time").
 //
@@ -224,7 +224,7 @@ double loop_area_resolution(const carried_loop<State>& loop, Eigen::Index plane)
     return loop_area_resolution(loop.points, plane);
 }
 
-// Sum of the signed projected areas over all planes: the invariant of the seed.
+// Sum of the signed projected areas over all planes: the invariant Gould & Tobochnik state after eq. 3.73.
 template <class State>
 double projected_area_sum(const carried_loop<State>& loop) {
     double sum = 0;

@@ -1,5 +1,5 @@
 #pragma once
-// Richardson extrapolation (seed 002, eq. 3.68): two results of an order-p
+// Richardson extrapolation (Gould & Tobochnik, eq. 3.68): two results of an order-p
 // approximation at h and h/2 combine to cancel the leading error term,
 //     R = A(h/2) + (A(h/2) - A(h)) / (2^p - 1).
 #include <cmath>
@@ -14,7 +14,7 @@
 namespace sympl {
 
 // f'(t) from the central difference D1(h) = (f(t + h) - f(t - h)) / (2h),
-// error O(h^2) (seed 002, eq. 3.66), extrapolated as (4 D1(h) - D1(2h)) / 3
+// error O(h^2) (Gould & Tobochnik, eq. 3.66), extrapolated as (4 D1(h) - D1(2h)) / 3
 // (eq. 3.68): error O(h^4).
 template <class F, class T>
 auto richardson_derivative(const F& f, T t, T h) {

@@ -3,7 +3,7 @@
 // Hamiltonian and any phase_space state.
 //
 // Per sub-step: a kick p += c*dt*force(q) or a drift q += c*dt*velocity(p)
-// (seed 002, eq. 3.74). A force is evaluated only when q has moved since the
+// (Gould & Tobochnik, eq. 3.74). A force is evaluated only when q has moved since the
 // last one, so the last force of a step is reused by the next (leapfrog KDK
 // costs one force per step), and likewise for velocities. The workspace is
 // sized once; no step allocates.

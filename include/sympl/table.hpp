@@ -1,5 +1,5 @@
 #pragma once
-// A splitting method as data (seed 002, eq. 3.74).
+// A splitting method as data (Gould & Tobochnik, eq. 3.74).
 //
 // The convention, stated once: a table of M stages advances (q, p) by dt as
 //     for k = 0 .. M-1:
@@ -8,7 +8,7 @@
 // with sum(kick) = sum(drift) = 1. A drift-first method has kick[0] = 0; a
 // method that ends on a kick has drift[M-1] = 0.
 //
-// The seed writes the same scheme with M sub-steps delta_t = dt/M and
+// Gould & Tobochnik (eq. 3.74) write the same scheme with M sub-steps delta_t = dt/M and
 // coefficients a_k (kick), b_k (drift) that sum to M: from_seed() converts.
 // Boost.Odeint's symplectic_rkn steppers are drift-first and call their drift
 // coefficients `a` and their kick coefficients `b`: from_drift_first()
@@ -224,16 +224,16 @@ private:
 
 // ---- Conversions ------------------------------------------------------------
 
-// From the seed's convention (seed 002, eq. 3.74): M sub-steps of delta_t = dt/M
+// From Gould & Tobochnik's convention (Gould & Tobochnik, eq. 3.74): M sub-steps of delta_t = dt/M
 // with kick coefficients a_k and drift coefficients b_k summing to M.
-// Verlet is M = 2, a = (1, 1), b = (2, 0) (seed eq. 3.75).
+// Verlet is M = 2, a = (1, 1), b = (2, 0) (Gould & Tobochnik eq. 3.75).
 inline table from_seed(std::string name, const std::vector<coefficient>& a, const std::vector<coefficient>& b,
                        int order = 0, std::string citation = {},
                        kinetic_requirement requirement = kinetic_requirement::any) {
     const auto M = static_cast<coefficient>(a.size());
     if (a.empty() || a.size() != b.size())
         throw invalid_table("table '" + name + "': a has " + std::to_string(a.size()) + " coefficients and b has " +
-                            std::to_string(b.size()) + "; expected M >= 1 of each (seed eq. 3.74)");
+                            std::to_string(b.size()) + "; expected M >= 1 of each (Gould & Tobochnik eq. 3.74)");
     auto scaled = [M](std::vector<coefficient> c) {
         for (auto& x : c) x /= M;
         return c;
@@ -243,7 +243,7 @@ inline table from_seed(std::string name, const std::vector<coefficient>& a, cons
         if (std::isfinite(sum) && std::fabs(sum - M) > 1e-14L * M)
             throw invalid_table("table '" + name + "': sum(" + (c == &a ? "a" : "b") + ") = " +
                                 detail::format_coefficient(sum) + "; expected M = " + detail::format_coefficient(M) +
-                                " (seed eq. 3.74)");
+                                " (Gould & Tobochnik eq. 3.74)");
     }
     return table(std::move(name), scaled(a), scaled(b), order, std::move(citation), requirement);
 }
