@@ -1,5 +1,6 @@
 // The sympl command-line program.
 //   sympl tables [--json]            every catalog entry and its properties
+//   sympl systems [--json]           every system, its parameters and the method kinds
 //   sympl check-table --kick ... --drift ... [--convention ...] [--json]
 //   sympl run SCENE.toml [--json]    one scene: summary and the outputs it asks for
 //   sympl report [SCENE.toml ...] [--out DIR] [--quick]   the work-precision study
@@ -19,23 +20,45 @@
 #include <sympl/sympl.hpp>
 #include <sympl/table_order.hpp>
 
+#include "format.hpp"
 #include "report.hpp"
+#include "run_scene.hpp"
 #include "scene.hpp"
+#include "systems.hpp"
 
 namespace {
 
 std::vector<double> as_doubles(const std::vector<sympl::coefficient>& c) { return {c.begin(), c.end()}; }
 
-std::string fixed(double x, int digits) {
-    std::ostringstream s;
-    s << std::fixed << std::setprecision(digits) << x;
-    return s.str();
-}
+using sympl::app::fixed;
+using sympl::app::format_number;
+using sympl::app::scientific;
 
-std::string scientific(double x, int digits) {
-    std::ostringstream s;
-    s << std::scientific << std::setprecision(digits) << x;
-    return s.str();
+// The registries: systems (with parameters) and method kinds.
+void print_systems(bool json) {
+    using namespace sympl::app;
+    if (json) {
+        nlohmann::json out = nlohmann::json::array();
+        for (const auto& s : systems()) {
+            nlohmann::json params = nlohmann::json::array();
+            for (const auto& p : s.parameters)
+                params.push_back({{"name", p.name}, {"default", p.value}, {"expected", p.expected()}, {"meaning", p.meaning}});
+            out.push_back({{"name", s.name}, {"description", s.description}, {"exact", s.exact}, {"parameters", params}});
+        }
+        std::cout << out.dump(2) << "\n";
+        return;
+    }
+    for (const auto& s : systems()) {
+        std::cout << s.name << (s.exact ? "  (exact solution)" : "") << "\n    " << s.description << "\n";
+        for (const auto& p : s.parameters)
+            std::cout << "    " << std::left << std::setw(16) << p.name << std::setw(10) << format_number(p.value, 6)
+                      << p.expected() << "; " << p.meaning << "\n";
+    }
+    std::cout << "\nmethod kinds:\n";
+    for (const auto& k : method_kinds()) std::cout << "    " << std::left << std::setw(10) << k.label << k.description << "\n";
+    std::cout << "besides the catalog's tables (sympl tables) and a scene's own [[table]]s:";
+    for (const auto& name : method_names_beside_tables()) std::cout << " " << name;
+    std::cout << "\n";
 }
 
 void print_tables(bool json) {
@@ -155,6 +178,10 @@ int main(int argc, char** argv) {
     bool tables_json = false;
     tables->add_flag("--json", tables_json, "JSON output");
 
+    auto* systems = app.add_subcommand("systems", "List every system, its parameters and the method kinds");
+    bool systems_json = false;
+    systems->add_flag("--json", systems_json, "JSON output");
+
     auto* check = app.add_subcommand("check-table", "Validate a table and measure its order and stability");
     std::string kick, drift, convention = "kick-first";
     bool check_json = false;
@@ -188,11 +215,12 @@ int main(int argc, char** argv) {
     }
     try {
         if (*tables) print_tables(tables_json);
+        if (*systems) print_systems(systems_json);
         if (*check) return check_table(kick, drift, convention, check_json);
         if (*run) sympl::app::run_scene(sympl::app::load_scene(scene_file), run_json, std::cout);
         if (*report) {
             std::vector<sympl::app::scene> scenes;
-            for (const auto& f : report_files) scenes.push_back(sympl::app::load_scene(f));
+            for (const auto& f : report_files) scenes.push_back(sympl::app::load_scene(f, report_options.quick));
             report_options.studies = report_files.empty();
             if (scenes.empty()) scenes = sympl::app::default_scenes(report_options.quick);
             sympl::app::run_report(scenes, report_options, std::cout);

@@ -1,6 +1,6 @@
 #pragma once
-// `sympl run` and `sympl report`: one scene's summary, and the work-precision
-// study (CSV, gnuplot PNGs, summary.md) with the stiff and extreme cases.
+// `sympl report`: the work-precision study (CSV, gnuplot PNGs, summary.md)
+// with the stiff and extreme cases (studies/).
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -8,10 +8,6 @@
 #include "scene.hpp"
 
 namespace sympl::app {
-
-// Runs every method of the scene at its first step size (or tolerance),
-// prints the summary and writes the outputs the scene asks for.
-void run_scene(const scene& s, bool json, std::ostream& out);
 
 struct report_options {
     std::string out_dir = "sympl-report";

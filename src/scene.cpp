@@ -11,44 +11,10 @@
 
 #include <sympl/catalog.hpp>
 
+#include "format.hpp"
+#include "systems.hpp"
+
 namespace sympl::app {
-
-const std::vector<std::string>& system_names() {
-    static const std::vector<std::string> names = {
-        "harmonic_oscillator", "pendulum", "kepler", "kepler_3d", "relativistic_pendulum", "henon_heiles",
-        "fpu_beta", "stiff_fpu", "outer_solar_system", "two_particle_spring", "morse", "double_well", "toda",
-        "damped_oscillator"};
-    return names;
-}
-
-const std::vector<std::string>& system_parameters(const std::string& system) {
-    static const std::map<std::string, std::vector<std::string>> known = {
-        {"harmonic_oscillator", {"mass", "omega"}},
-        {"pendulum", {"mass", "length", "gravity"}},
-        {"kepler", {"mu", "eccentricity", "scale"}},
-        {"kepler_3d", {"eccentricity", "inclination", "node", "periapsis"}},
-        {"relativistic_pendulum", {"mass", "c", "k"}},
-        {"henon_heiles", {"energy", "q2", "p2"}},
-        {"fpu_beta", {"n", "beta"}},
-        {"stiff_fpu", {"omega", "pairs"}},
-        {"outer_solar_system", {}},
-        {"two_particle_spring", {"mass", "stiffness"}},
-        {"morse", {"mass", "depth", "width", "position"}},
-        {"double_well", {"barrier"}},
-        {"toda", {"n"}},
-        {"damped_oscillator", {"mass", "stiffness", "damping", "drive_amplitude", "drive_frequency"}},
-    };
-    static const std::vector<std::string> none;
-    auto it = known.find(system);
-    return it == known.end() ? none : it->second;
-}
-
-const std::vector<std::string>& classic_method_names() {
-    static const std::vector<std::string> names = {"euler", "euler_cromer", "half_step", "euler_richardson", "rk2", "rk4",
-                                                   "velocity_verlet", "leapfrog_two_step", "damped_leapfrog",
-                                                   "predictor_corrector", "odeint_rk4", "odeint_dopri5"};
-    return names;
-}
 
 namespace {
 
@@ -83,7 +49,7 @@ struct reader {
     double positive(const toml::node& n, const std::string& key) const {
         const double v = number(n, key);
         if (!(v > 0) || !std::isfinite(v))
-            fail(n, "'" + key + "' = " + std::to_string(v) + "; expected a finite number > 0");
+            fail(n, "'" + key + "' = " + shortest(v) + "; expected a finite number > 0");
         return v;
     }
     std::string string(const toml::node& n, const std::string& key) const {
@@ -129,20 +95,44 @@ struct reader {
 
 method_spec method_by_name(const reader& r, const toml::node& n, const std::map<std::string, table>& inline_tables) {
     const std::string name = r.string(n, "methods");
-    if (auto it = inline_tables.find(name); it != inline_tables.end()) return {name, method_kind::table, it->second};
-    if (name == "odeint_rk4") return {name, method_kind::odeint_rk4, std::nullopt};
-    if (name == "odeint_dopri5") return {name, method_kind::odeint_dopri5, std::nullopt};
-    const auto& classic = classic_method_names();
-    if (std::find(classic.begin(), classic.end(), name) != classic.end()) return {name, method_kind::classic, std::nullopt};
-    const auto& names = catalog_names();
-    if (std::find(names.begin(), names.end(), name) != names.end()) return {name, method_kind::table, method(name)};
+    if (auto m = resolve_method(name, inline_tables)) return *m;
     r.fail(n, "unknown method '" + name + "'; expected a catalog name (sympl tables), an inline [[table]], or one of: " +
-                  join(classic));
+                  join(method_names_beside_tables()));
+}
+
+// [[table]] name = "...", kick = [...], drift = [...], order = 4, convention = "kick-first"
+void read_inline_table(const reader& r, const toml::node& e, std::map<std::string, table>& tables) {
+    const toml::table* t = e.as_table();
+    if (!t) r.fail(e, "each [[table]] must be a table");
+    r.only_keys(*t, {"name", "kick", "drift", "order", "convention"}, "[[table]]");
+    if (!t->get("name") || !t->get("kick") || !t->get("drift")) r.fail(e, "[[table]] needs name, kick and drift");
+    const toml::node& name_node = *t->get("name");
+    const std::string name = r.string(name_node, "table.name");
+    // A scene's table never hides a method of the same name, nor another of its tables.
+    if (tables.count(name)) r.fail(name_node, "a second [[table]] named '" + name + "'; expected each name once");
+    if (resolve_method(name, {})) r.fail(name_node, "[[table]] name '" + name + "' is already a method; expected a new name");
+    const auto kick = r.numbers(*t->get("kick"), "table.kick"), drift = r.numbers(*t->get("drift"), "table.drift");
+    int order = 0;
+    if (const toml::node* o = t->get("order")) {
+        const auto v = o->value<std::int64_t>();
+        if (!o->is_integer() || !v || *v < 0 || *v > 100) r.fail(*o, "'table.order' must be an integer in [0, 100] (0: unknown)");
+        order = int(*v);
+    }
+    const std::string convention = t->get("convention") ? r.string(*t->get("convention"), "table.convention") : "kick-first";
+    std::vector<coefficient> k(kick.begin(), kick.end()), d(drift.begin(), drift.end());
+    try {
+        if (convention == "seed") tables.emplace(name, from_seed(name, k, d, order));
+        else if (convention == "drift-first") tables.emplace(name, from_drift_first(name, d, k, order));
+        else if (convention == "kick-first") tables.emplace(name, table(name, k, d, order));
+        else r.fail(*t->get("convention"), "convention '" + convention + "'; expected kick-first, drift-first or seed");
+    } catch (const invalid_table& x) {
+        r.fail(e, x.what());
+    }
 }
 
 }  // namespace
 
-scene parse_scene(const std::string& text, const std::string& source) {
+scene parse_scene(const std::string& text, const std::string& source, bool quick) {
     const reader r{source};
     toml::table doc;
     try {
@@ -151,8 +141,19 @@ scene parse_scene(const std::string& text, const std::string& source) {
         r.fail(e.source(), "not valid TOML: " + std::string(e.description()));
     }
     r.only_keys(doc, {"name", "system", "parameters", "initial", "methods", "table", "dt", "tolerances", "t0", "t_end",
-                      "output"},
+                      "output", "quick"},
                 "the scene");
+    // [quick]: what `--quick` changes (a shorter span, a shorter sweep).
+    const toml::table* quick_table = nullptr;
+    if (const toml::node* q = doc.get("quick")) {
+        quick_table = q->as_table();
+        if (!quick_table) r.fail(*q, "'quick' must be a table of t_end, dt and tolerances");
+        r.only_keys(*quick_table, {"t_end", "dt", "tolerances"}, "[quick]");
+    }
+    const auto timing = [&](const char* key) -> const toml::node* {
+        if (quick && quick_table && quick_table->get(key)) return quick_table->get(key);
+        return doc.get(key);
+    };
     scene s;
     s.source = source;
     const toml::source_region top{{1, 1}, {1, 1}, nullptr};
@@ -165,12 +166,19 @@ scene parse_scene(const std::string& text, const std::string& source) {
     if (std::find(systems.begin(), systems.end(), s.system) == systems.end())
         r.fail(*system, "unknown system '" + s.system + "'; expected one of: " + join(systems));
 
+    const system_entry& entry = *find_system(s.system);
     if (const toml::node* p = doc.get("parameters")) {
         const toml::table* t = p->as_table();
         if (!t) r.fail(*p, "'parameters' must be a table of numbers");
-        const auto& known = system_parameters(s.system);
-        r.only_keys(*t, std::set<std::string>(known.begin(), known.end()), "[parameters] of " + s.system);
-        for (const auto& [key, node] : *t) s.parameters[std::string(key.str())] = r.number(node, std::string(key.str()));
+        std::set<std::string> known;
+        for (const auto& q : entry.parameters) known.insert(q.name);
+        r.only_keys(*t, known, "[parameters] of " + s.system);
+        for (const auto& [key, node] : *t) {
+            const parameter& q = *entry.find(std::string(key.str()));
+            const double v = r.number(node, q.name);
+            if (!q.accepts(v)) r.fail(node, s.system + " " + q.name + " = " + shortest(v) + "; expected " + q.expected());
+            s.parameters[q.name] = v;
+        }
     }
     if (const toml::node* i = doc.get("initial")) {
         const toml::table* t = i->as_table();
@@ -188,30 +196,7 @@ scene parse_scene(const std::string& text, const std::string& source) {
     if (const toml::node* tables = doc.get("table")) {
         const toml::array* a = tables->as_array();
         if (!a) r.fail(*tables, "'table' must be an array of tables: [[table]]");
-        for (const auto& e : *a) {
-            const toml::table* t = e.as_table();
-            if (!t) r.fail(e, "each [[table]] must be a table");
-            r.only_keys(*t, {"name", "kick", "drift", "order", "convention"}, "[[table]]");
-            if (!t->get("name") || !t->get("kick") || !t->get("drift")) r.fail(e, "[[table]] needs name, kick and drift");
-            const std::string name = r.string(*t->get("name"), "table.name");
-            const auto kick = r.numbers(*t->get("kick"), "table.kick"), drift = r.numbers(*t->get("drift"), "table.drift");
-            const int order = t->get("order") ? int(r.number(*t->get("order"), "table.order")) : 0;
-            const std::string convention = t->get("convention") ? r.string(*t->get("convention"), "table.convention")
-                                                                : "kick-first";
-            std::vector<coefficient> k(kick.begin(), kick.end()), d(drift.begin(), drift.end());
-            try {
-                inline_tables.emplace(name, convention == "seed"          ? from_seed(name, k, d, order)
-                                            : convention == "drift-first" ? from_drift_first(name, d, k, order)
-                                            : convention == "kick-first"  ? table(name, k, d, order)
-                                                                          : throw invalid_argument(
-                                                                                "convention '" + convention +
-                                                                                "'; expected kick-first, drift-first or seed"));
-            } catch (const invalid_table& x) {
-                r.fail(e, x.what());
-            } catch (const invalid_argument& x) {
-                r.fail(e, x.what());
-            }
-        }
+        for (const auto& e : *a) read_inline_table(r, e, inline_tables);
     }
 
     const toml::node* methods = doc.get("methods");
@@ -220,17 +205,17 @@ scene parse_scene(const std::string& text, const std::string& source) {
     if (!ma || ma->empty()) r.fail(*methods, "'methods' must be a non-empty array of method names");
     for (const auto& m : *ma) s.methods.push_back(method_by_name(r, m, inline_tables));
 
-    const toml::node* dt = doc.get("dt");
+    const toml::node* dt = timing("dt");
     if (!dt) r.fail(top, "missing 'dt'; expected a step size, an array, or {from, to, count}");
     s.dt = r.sweep(*dt, "dt");
-    s.tolerances = doc.get("tolerances") ? r.sweep(*doc.get("tolerances"), "tolerances")
+    s.tolerances = timing("tolerances") ? r.sweep(*timing("tolerances"), "tolerances")
                                          : std::vector<double>{1e-3, 1e-5, 1e-7, 1e-9, 1e-11};
     if (const toml::node* t0 = doc.get("t0")) s.t0 = r.number(*t0, "t0");
-    const toml::node* t_end = doc.get("t_end");
+    const toml::node* t_end = timing("t_end");
     if (!t_end) r.fail(top, "missing 't_end'");
     s.t_end = r.number(*t_end, "t_end");
     if (!(s.t_end > s.t0) || !std::isfinite(s.t_end))
-        r.fail(*t_end, "t_end = " + std::to_string(s.t_end) + " is not after t0 = " + std::to_string(s.t0) +
+        r.fail(*t_end, "t_end = " + shortest(s.t_end) + " is not after t0 = " + shortest(s.t0) +
                            "; expected t_end > t0");
 
     if (const toml::node* o = doc.get("output")) {
@@ -250,67 +235,25 @@ scene parse_scene(const std::string& text, const std::string& source) {
     return s;
 }
 
-scene load_scene(const std::string& path) {
+scene load_scene(const std::string& path, bool quick) {
     std::ifstream in(path);
     if (!in) throw scene_error(path + ": cannot open the scene file");
     std::stringstream text;
     text << in.rdbuf();
-    return parse_scene(text.str(), path);
+    return parse_scene(text.str(), path, quick);
+}
+
+problem problem_of(const scene& s) {
+    problem p = make_problem(s.system, s.parameters, s.q0, s.p0, s.source);
+    for (const method_spec& m : s.methods)
+        if (const std::string why = why_not(m, p.form); !why.empty()) throw scene_error(s.source + ": " + why);
+    return p;
 }
 
 std::vector<scene> default_scenes(bool quick) {
-    // Step sweeps end where the best methods reach roundoff; quick runs are shorter.
-    const std::string fast = quick ? "count = 4" : "count = 7";
-    const std::string symplectic =
-        R"("leapfrog_kdk", "forest_ruth_4", "blanes_moan_s6", "yoshida_6", "blanes_moan_s10", "sofroniou_spaletta_10")";
-    const std::string classic = R"("rk4", "odeint_rk4", "odeint_dopri5")";
-    const std::string tol = quick ? "tolerances = [1e-4, 1e-7, 1e-10]\n" : "tolerances = {from = 1e-3, to = 1e-12, count = 10}\n";
-    const auto make = [&](const std::string& name, const std::string& body, const std::string& methods) {
-        return parse_scene("name = \"" + name + "\"\n" + body + "methods = [" + methods + "]\n" + tol, "built-in:" + name);
-    };
-    const std::string all = symplectic + ", " + classic;
-    std::vector<scene> s;
-    s.push_back(make("harmonic_oscillator",
-                     "system = \"harmonic_oscillator\"\nt_end = " + std::string(quick ? "50" : "200") +
-                         "\ndt = {from = 0.5, to = 0.01, " + fast + "}\n",
-                     all));
-    s.push_back(make("pendulum",
-                     "system = \"pendulum\"\nt_end = " + std::string(quick ? "50" : "200") +
-                         "\ndt = {from = 0.5, to = 0.01, " + fast + "}\n",
-                     all));
-    s.push_back(make("kepler_e0.5",
-                     "system = \"kepler\"\nparameters = {eccentricity = 0.5}\nt_end = " +
-                         std::string(quick ? "31.41592653589793" : "125.66370614359172") +
-                         "\ndt = {from = 0.1, to = 0.002, " + fast + "}\n",
-                     all));
-    s.push_back(make("kepler_e0.9",
-                     "system = \"kepler\"\nparameters = {eccentricity = 0.9}\nt_end = " +
-                         std::string(quick ? "12.566370614359172" : "62.83185307179586") +
-                         "\ndt = {from = 0.02, to = 0.0005, " + fast + "}\n",
-                     all));
-    s.push_back(make("henon_heiles", "system = \"henon_heiles\"\nparameters = {energy = 0.16666666666666666}\nt_end = " +
-                                         std::string(quick ? "20" : "50") + "\ndt = {from = 0.2, to = 0.005, " + fast + "}\n",
-                     all));
-    s.push_back(make("fpu_beta", "system = \"fpu_beta\"\nparameters = {n = 32, beta = 1.0}\nt_end = " +
-                                     std::string(quick ? "20" : "100") + "\ndt = {from = 0.2, to = 0.005, " + fast + "}\n",
-                     all));
-    s.push_back(make("stiff_fpu", "system = \"stiff_fpu\"\nparameters = {omega = 50.0}\nt_end = " +
-                                      std::string(quick ? "5" : "20") + "\ndt = {from = 0.02, to = 0.0005, " + fast + "}\n",
-                     all));
-    s.push_back(make("outer_solar_system", "system = \"outer_solar_system\"\nt_end = " +
-                                               std::string(quick ? "20000" : "200000") +
-                                               "\ndt = {from = 200, to = 5, " + fast + "}\n",
-                     all));
-    s.push_back(make("two_particle_spring", "system = \"two_particle_spring\"\nt_end = " +
-                                                std::string(quick ? "50" : "200") + "\ndt = {from = 0.5, to = 0.01, " +
-                                                fast + "}\n",
-                     all));
-    s.push_back(make("damped_oscillator",
-                     "system = \"damped_oscillator\"\nparameters = {damping = 0.3, drive_amplitude = 0.5, "
-                     "drive_frequency = 0.7}\nt_end = " +
-                         std::string(quick ? "20" : "50") + "\ndt = {from = 0.2, to = 0.005, " + fast + "}\n",
-                     R"("euler", "euler_cromer", "half_step", "euler_richardson", "velocity_verlet", "damped_leapfrog", "predictor_corrector", "rk4", "odeint_rk4", "odeint_dopri5")"));
-    return s;
+    std::vector<scene> scenes;
+    for (const auto& [file, text] : builtin_scene_texts()) scenes.push_back(parse_scene(text, "built-in:" + file, quick));
+    return scenes;
 }
 
 }  // namespace sympl::app

@@ -6,20 +6,16 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <sympl/error.hpp>
 #include <sympl/table.hpp>
 
+#include "method_kinds.hpp"
+#include "problem.hpp"
+
 namespace sympl::app {
-
-enum class method_kind { table, classic, odeint_rk4, odeint_dopri5 };
-
-struct method_spec {
-    std::string name;
-    method_kind kind = method_kind::table;
-    std::optional<table> coefficients;  // for kind == table
-};
 
 // What a run writes; what is not asked for is neither computed nor stored.
 struct output_spec {
@@ -49,15 +45,18 @@ struct scene_error : error {
     using error::error;
 };
 
-scene parse_scene(const std::string& text, const std::string& source);
-scene load_scene(const std::string& path);
+// `quick`: apply the scene's [quick] table (shorter t_end, fewer steps), if it has one.
+scene parse_scene(const std::string& text, const std::string& source, bool quick = false);
+scene load_scene(const std::string& path, bool quick = false);
 
-// The built-in scenes (compiled in); quick ones are shorter and sweep fewer steps.
+// The scene's system as a problem, every method checked against it: a method
+// it cannot run is a scene_error before anything runs or is written.
+problem problem_of(const scene& s);
+
+// The built-in scenes: the TOML files of src/scenes/, compiled in.
 std::vector<scene> default_scenes(bool quick);
 
-// The system names a scene may use, and the method names beside the catalog.
-const std::vector<std::string>& system_names();
-const std::vector<std::string>& system_parameters(const std::string& system);
-const std::vector<std::string>& classic_method_names();
+// Their texts, by file name (generated from src/scenes/ at build time).
+const std::vector<std::pair<std::string, std::string>>& builtin_scene_texts();
 
 }  // namespace sympl::app

@@ -24,30 +24,30 @@ TEST_CASE("odeint: a sympl Hamiltonian runs in runge_kutta4, dopri5 (controlled 
     const auto system = make_odeint_system<2>(kepler);
     using Vec = std::vector<double>;
     {
-        Vec y = to_odeint_state(x0);
+        Vec y = stacked(x0);
         odeint::integrate_n_steps(odeint::runge_kutta4<Vec>(), system, y, 0.0, 2 * M_PI / 2000, 2000);
-        CHECK(max_difference(from_odeint_state<K>(y), exact) < 1e-7);
+        CHECK(max_difference(from_stacked<K>(y), exact) < 1e-7);
     }
     {
-        Vec y = to_odeint_state(x0);
+        Vec y = stacked(x0);
         odeint::integrate_adaptive(odeint::make_controlled(1e-12, 1e-12, odeint::runge_kutta_dopri5<Vec>()), system, y,
                                    0.0, 2 * M_PI, 0.01);
-        CHECK(max_difference(from_odeint_state<K>(y), exact) < 1e-9);
+        CHECK(max_difference(from_stacked<K>(y), exact) < 1e-9);
     }
     {
-        Vec y = to_odeint_state(x0);
+        Vec y = stacked(x0);
         odeint::integrate_const(odeint::make_dense_output(1e-12, 1e-12, odeint::runge_kutta_dopri5<Vec>()), system, y,
                                 0.0, 2 * M_PI, 2 * M_PI / 8);
-        CHECK(max_difference(from_odeint_state<K>(y), exact) < 1e-9);
+        CHECK(max_difference(from_stacked<K>(y), exact) < 1e-9);
     }
     {
-        Vec y = to_odeint_state(x0);
+        Vec y = stacked(x0);
         odeint::integrate_adaptive(odeint::make_controlled(1e-13, 1e-13, odeint::runge_kutta_fehlberg78<Vec>()), system,
                                    y, 0.0, 2 * M_PI, 0.01);
-        CHECK(max_difference(from_odeint_state<K>(y), exact) < 1e-10);
+        CHECK(max_difference(from_stacked<K>(y), exact) < 1e-10);
     }
     // A dynamic-size system reads the dimension from the state.
-    Vec y = to_odeint_state(x0), dydt(4);
+    Vec y = stacked(x0), dydt(4);
     make_odeint_system(kepler)(y, dydt, 0.0);
     CHECK(dydt[0] == 0.0);
     CHECK(dydt[2] == doctest::Approx(-1 / (0.5 * 0.5)));
@@ -92,7 +92,7 @@ TEST_CASE("odeint: sympl steppers run in integrate_const and integrate_n_steps w
 }
 
 TEST_CASE("odeint: state conversions check their sizes") {
-    CHECK_THROWS_WITH_AS(from_odeint_state<K>(std::vector<double>(3)), doctest::Contains("3 numbers"), invalid_argument);
-    CHECK_THROWS_WITH_AS(from_odeint_state<K>(std::vector<double>(6)), doctest::Contains("expected q and p stacked, 4 numbers"),
+    CHECK_THROWS_WITH_AS(from_stacked<K>(std::vector<double>(3)), doctest::Contains("3 numbers"), invalid_argument);
+    CHECK_THROWS_WITH_AS(from_stacked<K>(std::vector<double>(6)), doctest::Contains("expected q and p stacked, 4 numbers"),
                          invalid_argument);
 }

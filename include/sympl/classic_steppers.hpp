@@ -1,10 +1,11 @@
 #pragma once
 // The classic algorithms of Gould & Tobochnik (ch. 3) and Sandvik's lecture notes, on the same phase_space states as
 // the splitting stepper, for comparison and teaching:
-//   euler, euler_cromer, half_step (000 eq. 3.37), euler_richardson (3.43-3.44)
-//   = rk2 (midpoint, 001), rk4 (001), velocity_verlet (3.48),
-//   leapfrog_two_step (3.47), damped_leapfrog (001, plain and corrected),
-//   predictor_corrector (002 eqs. 3.69-3.70).
+//   euler, euler_cromer, half_step (Gould & Tobochnik eq. 3.37), euler_richardson
+//   (eqs. 3.43-3.44) = rk2 (the midpoint method of Sandvik's lecture notes), rk4
+//   (Sandvik), velocity_verlet (eq. 3.48), leapfrog_two_step (eq. 3.47),
+//   damped_leapfrog (Sandvik, plain and corrected), predictor_corrector
+//   (Gould & Tobochnik eqs. 3.69-3.70).
 // Each runs on equations_of_motion (equations_of_motion.hpp): Newton's
 // x'' = a(x, v, t) with damping and driving, or any separable Hamiltonian
 // (make_classic wraps it). Each algorithm is a rule (its step and workspace);

@@ -2,6 +2,7 @@
 // Exceptions thrown by sympl. Every message names the bad value and what was
 // expected, so that a caller can report it as it stands.
 #include <cstddef>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -30,5 +31,24 @@ struct integration_error : error {
     std::size_t step;  // index of the step that produced the non-finite state (1-based)
     double time;       // time at the start of that step
 };
+
+namespace detail {
+// A number in an error message: every digit a double (or long double) needs.
+inline std::string number_text(long double v) {
+    std::ostringstream s;
+    s.precision(17);
+    s << v;
+    return s.str();
+}
+}  // namespace detail
+
+// The one message for a step that produced a non-finite state, wherever it is
+// detected (sympl's drivers, the program's Odeint runs).
+inline integration_error blow_up(std::size_t step, long double t, long double dt, const std::string& note = "") {
+    return integration_error("integration blew up: step " + std::to_string(step) + " (from t = " +
+                                 detail::number_text(t) + " with dt = " + detail::number_text(dt) +
+                                 ") produced a non-finite state" + note,
+                             step, static_cast<double>(t));
+}
 
 }  // namespace sympl

@@ -53,10 +53,7 @@ struct run_summary {
 namespace detail {
 template <class T>
 std::string number(T v) {
-    std::ostringstream s;
-    s.precision(17);
-    s << static_cast<long double>(primal(v));
-    return s.str();
+    return number_text(static_cast<long double>(primal(v)));
 }
 
 // One step from time t.
@@ -121,11 +118,8 @@ void checked_steps(Stepper& s, State& x, State& checkpoint, T t0, T dt, std::siz
                     x = before;
                     const std::size_t bad = first + done + j + 1;
                     const T t_bad = t0 + T(bad - 1) * dt;
-                    throw integration_error("integration blew up: step " + std::to_string(bad) + " (from t = " +
-                                                number(t_bad) + " with dt = " + number(dt) +
-                                                ") produced a non-finite state; the state is left at t = " +
-                                                number(t_bad),
-                                            bad, static_cast<double>(primal(t_bad)));
+                    throw blow_up(bad, static_cast<long double>(primal(t_bad)), static_cast<long double>(primal(dt)),
+                                  "; the state is left at t = " + number(t_bad));
                 }
             }
         }
@@ -197,10 +191,7 @@ run_summary integrate_until(Stepper& stepper, typename Stepper::state_type& x, t
         detail::one_step(stepper, x, t0 + T(n) * dt, rest);
         if (!is_finite(x)) {
             x = last;
-            throw integration_error("integration blew up: the final step " + std::to_string(n + 1) + " (from t = " +
-                                        detail::number(t0 + T(n) * dt) + " with dt = " + detail::number(rest) +
-                                        ") produced a non-finite state",
-                                    n + 1, static_cast<double>(primal(t0 + T(n) * dt)));
+            throw blow_up(n + 1, static_cast<long double>(primal(t0 + T(n) * dt)), static_cast<long double>(primal(rest)));
         }
         ++r.steps;
         if constexpr (!std::is_same_v<std::decay_t<Observer>, no_observer>) observer(std::as_const(x), t_end);

@@ -12,7 +12,7 @@
 //    integrate_n_steps with an Odeint observer run it on phase_space states.
 //    The stepper carries its own system, so the system argument Odeint passes
 //    is ignored (pass sympl::odeint_stepper_system{}).
-//  - to_odeint_state / from_odeint_state convert between the two state forms.
+//  - stacked / from_stacked (phase_space.hpp) convert between the two state forms.
 #include <cstddef>
 #include <iterator>
 #include <string>
@@ -33,38 +33,7 @@ namespace detail {
 template <class Container>
 using element_of = std::decay_t<decltype(*std::data(std::declval<Container&>()))>;
 
-template <int Dim, class Container>
-void check_stacked(const Container& x, const char* who) {
-    const std::size_t n = std::size(x);
-    if (n % 2 != 0 || (Dim != Eigen::Dynamic && n != std::size_t(2 * Dim)))
-        throw invalid_argument(std::string(who) + ": a state of " + std::to_string(n) +
-                               " numbers; expected q and p stacked" +
-                               (Dim != Eigen::Dynamic ? ", " + std::to_string(2 * Dim) + " numbers" : std::string()));
-}
 }  // namespace detail
-
-// (q, p) -> the stacked vector (q_1 .. q_n, p_1 .. p_n).
-template <class S, int D>
-std::vector<S> to_odeint_state(const phase_space<S, D>& x) {
-    std::vector<S> y(static_cast<std::size_t>(2 * x.size()));
-    for (Eigen::Index i = 0; i < x.size(); ++i) {
-        y[i] = x.q[i];
-        y[x.size() + i] = x.p[i];
-    }
-    return y;
-}
-
-template <class State, class Container>
-State from_odeint_state(const Container& y) {
-    detail::check_stacked<State::dimension>(y, "from_odeint_state");
-    const auto n = static_cast<Eigen::Index>(std::size(y) / 2);
-    State x(n);
-    for (Eigen::Index i = 0; i < n; ++i) {
-        x.q[i] = y[i];
-        x.p[i] = y[n + i];
-    }
-    return x;
-}
 
 // dx/dt = (dT/dp, -dV/dq) for Odeint. Dim fixes the number of degrees of freedom
 // at compile time (no allocation per call); Eigen::Dynamic reads it from x.
@@ -155,10 +124,10 @@ auto odeint_rk4_flow(H h, double dt, std::size_t n) {
         using State = std::decay_t<decltype(x)>;
         using S = typename State::scalar;
         using Container = std::vector<S>;
-        std::vector<S> y = to_odeint_state(x);
+        std::vector<S> y = stacked(x);
         boost::numeric::odeint::runge_kutta4<Container, double, Container, double> rk4;
         boost::numeric::odeint::integrate_n_steps(rk4, odeint_system<H, Dim>{h}, y, 0.0, dt, n);
-        x = from_odeint_state<State>(y);
+        x = from_stacked<State>(y);
     };
 }
 

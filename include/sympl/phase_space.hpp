@@ -2,8 +2,11 @@
 // A point (q, p) of phase space. Dim is the number of degrees of freedom:
 // fixed at compile time (stack storage, no heap) or Eigen::Dynamic.
 #include <cmath>
+#include <cstddef>
+#include <iterator>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -74,5 +77,42 @@ S max_difference(const phase_space<S, D>& a, const phase_space<S, D>& b) {
     if (a.size() == 0) return S(0);
     return std::max((a.q - b.q).cwiseAbs().maxCoeff(), (a.p - b.p).cwiseAbs().maxCoeff());
 }
+
+namespace detail {
+template <int Dim, class Container>
+void check_stacked(const Container& x, const char* who) {
+    const std::size_t n = std::size(x);
+    if (n % 2 != 0 || (Dim != Eigen::Dynamic && n != std::size_t(2 * Dim)))
+        throw invalid_argument(std::string(who) + ": a state of " + std::to_string(n) +
+                               " numbers; expected q and p stacked" +
+                               (Dim != Eigen::Dynamic ? ", " + std::to_string(2 * Dim) + " numbers" : std::string()));
+}
+}  // namespace detail
+
+// (q, p) -> (q_1 .. q_n, p_1 .. p_n): the first-order form of Odeint and of
+// the program's files.
+template <class S, int D>
+std::vector<S> stacked(const phase_space<S, D>& x) {
+    std::vector<S> y(static_cast<std::size_t>(2 * x.size()));
+    for (Eigen::Index i = 0; i < x.size(); ++i) {
+        y[i] = x.q[i];
+        y[x.size() + i] = x.p[i];
+    }
+    return y;
+}
+
+// (q_1 .. q_n, p_1 .. p_n) -> (q, p), from any sized container of numbers.
+template <class State, class Container>
+State from_stacked(const Container& y) {
+    detail::check_stacked<State::dimension>(y, "from_stacked");
+    const auto n = static_cast<Eigen::Index>(std::size(y) / 2);
+    State x(n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+        x.q[i] = typename State::scalar(y[i]);
+        x.p[i] = typename State::scalar(y[n + i]);
+    }
+    return x;
+}
+
 
 }  // namespace sympl

@@ -1,9 +1,8 @@
 #pragma once
-// A scene's system made runnable by any method: sympl tables, the classic
-// steppers, Boost.Odeint's runge_kutta4 and controlled runge_kutta_dopri5.
-// Everything is type-erased over std::vector<double> states (q then p), so the
-// program can hold all systems in one list; the runs themselves use sympl's
-// templates on dynamic-size states.
+// A system made runnable by any method kind (method_kinds.hpp). Everything is
+// type-erased over stacked std::vector<double> states (q then p), so the
+// program holds all systems in one registry (systems.hpp); the runs
+// themselves use sympl's templates on dynamic-size states (runner.hpp).
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -11,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "scene.hpp"
+#include "method_kinds.hpp"
 
 namespace sympl::app {
 
@@ -40,7 +39,8 @@ struct run_result {
 
 struct problem {
     std::string system;
-    bool hamiltonian = true;
+    bool hamiltonian = true;  // has an energy to watch
+    system_form form;         // what its equations offer a method
     std::size_t degrees_of_freedom = 0;
     std::vector<double> x0;  // q then p
     // Exact state at time t (from x0 at t0 = 0); empty when there is none.
@@ -49,13 +49,9 @@ struct problem {
     std::function<run_result(const method_spec&, const run_request&, double t0, double t_end,
                              const std::vector<double>& x0)>
         run;
-    // Why `method` cannot run on this system ("" when it can).
-    std::function<std::string(const method_spec&)> unsupported;
     // A reference at t_end from Sofroniou-Spaletta 10 in long double with step dt.
     std::function<std::vector<double>(double t0, double t_end, double dt, const std::vector<double>& x0)> reference;
 };
-
-problem make_problem(const scene& s);
 
 // max_i |a_i - b_i| / max_i |b_i|
 double relative_difference(const std::vector<double>& a, const std::vector<double>& b);

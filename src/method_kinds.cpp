@@ -1,0 +1,80 @@
+// The method-kind registry: resolution of names and the "can it run" answer.
+#include "method_kinds.hpp"
+
+#include <algorithm>
+
+#include <sympl/catalog.hpp>
+
+namespace sympl::app {
+
+const std::vector<method_kind_entry>& method_kinds() {
+    static const std::vector<method_kind_entry> kinds = {
+        {method_kind::table, "table", false, needs::separable_hamiltonian,
+         "a splitting table: the catalog's (sympl tables) or a scene's own [[table]]"},
+        {method_kind::classic, "classic", false, needs::any, "a classic stepper of Gould & Tobochnik or Sandvik"},
+        {method_kind::odeint_rk4, "odeint", false, needs::any, "Boost.Odeint runge_kutta4, fixed step"},
+        {method_kind::odeint_dopri5, "odeint", true, needs::any,
+         "Boost.Odeint controlled runge_kutta_dopri5, absolute = relative tolerance"},
+    };
+    return kinds;
+}
+
+const method_kind_entry& entry_of(method_kind kind) {
+    for (const auto& k : method_kinds())
+        if (k.kind == kind) return k;
+    throw invalid_argument("method kind " + std::to_string(int(kind)) + " has no registry entry");
+}
+
+std::string why_not(needs n, const system_form& form) {
+    switch (n) {
+        case needs::any: return "";
+        case needs::separable_hamiltonian:
+            return form.separable_hamiltonian ? ""
+                                              : "needs a separable Hamiltonian H = T(p) + V(q); this system is not "
+                                                "Hamiltonian (use a classic method)";
+        case needs::newtonian:
+            return form.newtonian ? ""
+                                  : "needs Newton's form x'' = a(x, v, t); this system is Hamiltonian (use velocity_verlet)";
+        case needs::damped_split:
+            return form.damped_split ? "" : "needs a force split as F(x, t) - G(v); only damped_oscillator has one";
+    }
+    return "needs what no system offers";
+}
+
+std::vector<std::string> method_names_beside_tables() {
+    std::vector<std::string> names;
+    std::apply([&](const auto&... m) { (names.push_back(m.name), ...); }, classic_methods);
+    names.push_back("odeint_rk4");
+    names.push_back("odeint_dopri5");
+    return names;
+}
+
+namespace {
+bool is_classic(const std::string& name) {
+    return std::apply([&](const auto&... m) { return ((name == m.name) || ...); }, classic_methods);
+}
+}  // namespace
+
+std::optional<method_spec> resolve_method(const std::string& name, const std::map<std::string, table>& inline_tables) {
+    if (auto it = inline_tables.find(name); it != inline_tables.end()) return method_spec{name, method_kind::table, it->second};
+    if (name == "odeint_rk4") return method_spec{name, method_kind::odeint_rk4, std::nullopt};
+    if (name == "odeint_dopri5") return method_spec{name, method_kind::odeint_dopri5, std::nullopt};
+    if (is_classic(name)) return method_spec{name, method_kind::classic, std::nullopt};
+    const auto& names = catalog_names();
+    if (std::find(names.begin(), names.end(), name) != names.end()) return method_spec{name, method_kind::table, method(name)};
+    return std::nullopt;
+}
+
+needs requirement_of(const method_spec& m) {
+    if (m.kind != method_kind::classic) return entry_of(m.kind).requirement;
+    needs n = needs::any;
+    std::apply([&](const auto&... c) { ((m.name == c.name ? void(n = c.requirement) : void()), ...); }, classic_methods);
+    return n;
+}
+
+std::string why_not(const method_spec& m, const system_form& form) {
+    const std::string why = why_not(requirement_of(m), form);
+    return why.empty() ? "" : "method '" + m.name + "' " + why;
+}
+
+}  // namespace sympl::app

@@ -1,0 +1,87 @@
+#pragma once
+// Every kind of method the program runs, in one place: how a name in a scene
+// resolves, what each kind needs of a system, and why it cannot run where it
+// cannot. Adding a classic stepper is adding a line to classic_methods;
+// adding a kind is adding an entry to method_kinds() and a case to the runner.
+#include <map>
+#include <optional>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include <sympl/classic_steppers.hpp>
+#include <sympl/table.hpp>
+
+namespace sympl::app {
+
+enum class method_kind { table, classic, odeint_rk4, odeint_dopri5 };
+
+struct method_spec {
+    std::string name;
+    method_kind kind = method_kind::table;
+    std::optional<table> coefficients;  // for kind == table
+};
+
+// What a system's equations offer a method.
+struct system_form {
+    bool separable_hamiltonian = false;  // H = T(p) + V(q): what a splitting table needs
+    bool newtonian = false;              // x'' = a(x, v, t), q = x and p = v
+    bool damped_split = false;           // a force split as F(x, t) - G(v)
+};
+
+enum class needs { any, separable_hamiltonian, newtonian, damped_split };
+
+// Why a method that needs `n` cannot run on a system of `form` ("" when it can).
+std::string why_not(needs n, const system_form& form);
+
+struct method_kind_entry {
+    method_kind kind;
+    const char* label;        // the kind column of work_precision.csv
+    bool adaptive;            // swept over tolerances instead of step sizes
+    needs requirement;        // for classic methods: per method, see classic_methods
+    const char* description;  // for listings and error messages
+};
+const std::vector<method_kind_entry>& method_kinds();
+const method_kind_entry& entry_of(method_kind kind);
+
+// A classic stepper of classic_steppers.hpp under its scene name.
+template <template <class, class> class Stepper, needs Needs>
+struct classic_method {
+    const char* name;
+    const char* description;
+    static constexpr needs requirement = Needs;
+};
+
+// The classic steppers, by name; the runner instantiates each on every system
+// whose form meets its requirement.
+inline constexpr std::tuple classic_methods{
+    classic_method<euler, needs::any>{"euler", "Euler, first order"},
+    classic_method<euler_cromer, needs::any>{"euler_cromer", "Euler-Cromer (Gould & Tobochnik), first order, symplectic"},
+    classic_method<half_step, needs::any>{"half_step", "half-step algorithm (Gould & Tobochnik eq. 3.37)"},
+    classic_method<euler_richardson, needs::any>{"euler_richardson", "Euler-Richardson (Gould & Tobochnik eqs. 3.43-3.44)"},
+    classic_method<rk2, needs::any>{"rk2", "midpoint Runge-Kutta (Sandvik's lecture notes) = euler_richardson"},
+    classic_method<rk4, needs::any>{"rk4", "classic fourth-order Runge-Kutta (Sandvik's lecture notes)"},
+    classic_method<velocity_verlet, needs::any>{"velocity_verlet", "velocity Verlet (Gould & Tobochnik eq. 3.48)"},
+    classic_method<leapfrog_two_step, needs::newtonian>{"leapfrog_two_step",
+                                                        "two-step leapfrog (Gould & Tobochnik eq. 3.47)"},
+    classic_method<damped_leapfrog, needs::damped_split>{"damped_leapfrog",
+                                                         "leapfrog with velocity-dependent damping (Sandvik)"},
+    classic_method<predictor_corrector, needs::any>{"predictor_corrector",
+                                                    "predictor-corrector (Gould & Tobochnik eqs. 3.69-3.70)"},
+};
+
+// The names a scene may give beside the catalog's and its own [[table]]s:
+// the classic steppers and the Odeint kinds.
+std::vector<std::string> method_names_beside_tables();
+
+// The method a scene names: an inline table first, then an Odeint kind, a
+// classic stepper, a catalog table; nullopt when the name is none of these.
+std::optional<method_spec> resolve_method(const std::string& name, const std::map<std::string, table>& inline_tables);
+
+// What `m` needs of a system.
+needs requirement_of(const method_spec& m);
+
+// Why `m` cannot run on a system of `form` ("" when it can): "method 'x' ...".
+std::string why_not(const method_spec& m, const system_form& form);
+
+}  // namespace sympl::app

@@ -1,0 +1,52 @@
+// References: exact, or a long-double Sofroniou-Spaletta 10 run, cached on disk.
+#include "reference.hpp"
+
+#include <fstream>
+#include <functional>
+#include <iomanip>
+#include <sstream>
+
+#include "format.hpp"
+#include "writers.hpp"
+
+namespace sympl::app {
+
+namespace fs = std::filesystem;
+
+reference_state make_reference(const scene& s, const problem& p, double finest_dt, const fs::path& cache) {
+    if (p.exact) return {p.exact(s.t_end - s.t0), 0.0, "exact"};
+    const double dt = finest_dt / 4;
+    const std::string kind =
+        p.hamiltonian ? "sofroniou_spaletta_10, long double, dt = " + format_number(dt) : "rk4, dt = " + format_number(dt);
+    // Cached on disk under a key of everything the reference depends on.
+    std::ostringstream key;
+    key << std::setprecision(17) << s.system << ';' << s.t0 << ';' << s.t_end << ';' << dt;
+    for (const auto& [k, v] : s.parameters) key << ';' << k << '=' << v;
+    for (double v : p.x0) key << ';' << v;
+    const fs::path file =
+        cache.empty() ? fs::path() : cache / ("reference_" + std::to_string(std::hash<std::string>{}(key.str())) + ".txt");
+    if (!file.empty() && fs::exists(file)) {
+        std::ifstream in(file);
+        std::string stored;
+        std::getline(in, stored);
+        reference_state r{{}, 0, kind + " (cached)"};
+        double v;
+        if (stored == key.str() && in >> r.error) {
+            while (in >> v) r.x.push_back(v);
+            if (r.x.size() == p.x0.size()) return r;
+        }
+    }
+    const auto coarse = p.reference(s.t0, s.t_end, 2 * dt, p.x0);
+    const auto fine = p.reference(s.t0, s.t_end, dt, p.x0);
+    reference_state r{fine, relative_difference(coarse, fine), kind};
+    if (!file.empty()) {
+        fs::create_directories(cache);
+        atomic_file out(file);
+        out.stream() << key.str() << "\n" << std::setprecision(17) << r.error << "\n";
+        for (double v : r.x) out.stream() << v << "\n";
+        out.commit();
+    }
+    return r;
+}
+
+}  // namespace sympl::app

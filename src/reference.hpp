@@ -1,0 +1,26 @@
+#pragma once
+// The state a run's final error is measured against: the exact solution where
+// the system has one, otherwise Sofroniou-Spaletta 10 in long double (RK4 for
+// a system that is not Hamiltonian) at a quarter of the finest step, with its
+// own error estimated from the run at twice that step.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "problem.hpp"
+#include "scene.hpp"
+
+namespace sympl::app {
+
+struct reference_state {
+    std::vector<double> x;
+    double error = 0;  // relative; 0 for an exact solution
+    std::string kind;  // how it was made
+};
+
+// `finest_dt`: the smallest step the runs to be compared use. With `cache`
+// not empty, a reference is stored there under a key of everything it depends on.
+reference_state make_reference(const scene& s, const problem& p, double finest_dt,
+                               const std::filesystem::path& cache = {});
+
+}  // namespace sympl::app

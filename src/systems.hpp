@@ -1,0 +1,59 @@
+#pragma once
+// The registry of systems: per system one entry with its name, what it is,
+// its parameters (defaults, valid ranges, meaning and units), whether it has
+// an exact solution, and the factory that builds it with its default initial
+// state. Scene parsing, the runner, the report, `sympl systems` and the error
+// messages all read it: adding a system is adding an entry in systems.cpp
+// (and its header in hamiltonians/).
+#include <functional>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "problem.hpp"
+
+namespace sympl::app {
+
+struct parameter {
+    std::string name;
+    double value = 0;  // the default
+    double low = -std::numeric_limits<double>::infinity();
+    double high = std::numeric_limits<double>::infinity();
+    bool low_open = false;   // low itself is not allowed
+    bool high_open = false;  // high itself is not allowed
+    bool integer = false;
+    std::string meaning;  // with its unit where it has one
+
+    bool accepts(double v) const;
+    // "a number > 0", "an integer in [1, 1000000]": for error messages.
+    std::string expected() const;
+};
+
+using parameter_values = std::map<std::string, double>;
+
+struct system_entry {
+    std::string name;
+    std::string description;  // the Hamiltonian or equations, with the source
+    std::vector<parameter> parameters;
+    bool exact = false;  // an exact solution from the default state (and parameters, see description)
+    std::function<problem(const parameter_values&)> build;  // every parameter present and valid
+
+    const parameter* find(const std::string& parameter_name) const;
+};
+
+const std::vector<system_entry>& systems();
+const system_entry* find_system(const std::string& name);
+std::vector<std::string> system_names();
+
+// The entry's defaults overridden by `given`; an unknown name or a value out
+// of range is an invalid_argument naming the value and what was expected.
+parameter_values with_defaults(const system_entry& entry, const parameter_values& given, const std::string& where);
+
+// The problem for a system by name, with the given parameters and, when q0 is
+// not empty, that initial state instead of the default (which drops the exact
+// solution). `where` prefixes error messages (the scene's file).
+problem make_problem(const std::string& system, const parameter_values& given, const std::vector<double>& q0,
+                     const std::vector<double>& p0, const std::string& where);
+
+}  // namespace sympl::app

@@ -1,0 +1,55 @@
+#pragma once
+// How the program writes files: complete or not at all (atomic_file), CSV
+// with quoted fields, markdown cells, gnuplot scripts with quoted strings and
+// gnuplot itself started without a shell. JSON is nlohmann-json's.
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace sympl::app {
+
+// A file written under a temporary name of its own (unique to this process)
+// and renamed into place by commit(): a run that fails, or a full disk,
+// leaves the previous file as it was. Every write is checked at commit.
+class atomic_file {
+public:
+    explicit atomic_file(std::filesystem::path path);
+    ~atomic_file();
+    atomic_file(const atomic_file&) = delete;
+    atomic_file& operator=(const atomic_file&) = delete;
+
+    std::ofstream& stream() { return out_; }
+    const std::filesystem::path& path() const { return path_; }
+    // Flushes, checks every write and renames; an error names the file and the reason.
+    void commit();
+
+private:
+    std::filesystem::path path_, temporary_;
+    std::ofstream out_;
+    bool committed_ = false;
+};
+
+// One CSV field: quoted (with quotes doubled) when it holds a comma, a quote
+// or a line break (RFC 4180).
+std::string csv_field(const std::string& text);
+// A CSV line of fields, each through csv_field.
+std::string csv_line(const std::vector<std::string>& fields);
+
+// A markdown table cell: '|' escaped, line breaks as spaces.
+std::string markdown_cell(const std::string& text);
+
+// A name that is safe as (part of) a file name in the output directory:
+// letters, digits, '-', '_' and '.', never starting with '.'.
+std::string file_name_part(const std::string& name);
+
+// A gnuplot string literal: single quotes doubled, control characters as spaces.
+std::string gnuplot_string(const std::string& text);
+
+// Whether gnuplot can be started.
+bool have_gnuplot();
+// Runs `gnuplot script` (no shell: an argument list). A failure, or a PNG that
+// was not drawn, is said on stderr and leaves no empty PNG behind.
+void run_gnuplot(const std::filesystem::path& script, const std::filesystem::path& png);
+
+}  // namespace sympl::app
