@@ -1,6 +1,7 @@
 #pragma once
 // sympl: symplectic splitting methods for separable Hamiltonians. Everything
-// but the Boost.Odeint interop (odeint.hpp), which pulls in all of Odeint.
+// but the Boost.Odeint interop (odeint.hpp), which pulls in all of Odeint, and
+// the 113-bit order measurement (table_order.hpp), which pulls in Boost.Multiprecision.
 #include "adaptive.hpp"
 #include "catalog.hpp"
 #include "classic_steppers.hpp"
@@ -15,3 +16,4 @@
 #include "richardson.hpp"
 #include "splitting_stepper.hpp"
 #include "table.hpp"
+#include "time_transformation.hpp"
