@@ -9,12 +9,18 @@ namespace sympl::app {
 
 const std::vector<method_kind_entry>& method_kinds() {
     static const std::vector<method_kind_entry> kinds = {
-        {method_kind::table, "table", false, needs::separable_hamiltonian,
+        {method_kind::table, "table", false, false, needs::separable_hamiltonian,
          "a splitting table: the catalog's (sympl tables) or a scene's own [[table]]"},
-        {method_kind::classic, "classic", false, needs::any, "a classic stepper of Gould & Tobochnik or Sandvik"},
-        {method_kind::odeint_rk4, "odeint", false, needs::any, "Boost.Odeint runge_kutta4, fixed step"},
-        {method_kind::odeint_dopri5, "odeint", true, needs::any,
+        {method_kind::logh, "logh", false, false, needs::negative_potential,
+         "logh(<table>): the table in LogH fictitious time (Mikkola & Tanikawa 1999); dt is the fictitious step"},
+        {method_kind::classic, "classic", false, false, needs::any, "a classic stepper of Gould & Tobochnik or Sandvik"},
+        {method_kind::odeint_rk4, "odeint", false, true, needs::any, "Boost.Odeint runge_kutta4, fixed step"},
+        {method_kind::odeint_dopri5, "odeint", true, true, needs::any,
          "Boost.Odeint controlled runge_kutta_dopri5, absolute = relative tolerance"},
+        {method_kind::odeint_fehlberg78, "odeint", true, true, needs::any,
+         "Boost.Odeint controlled runge_kutta_fehlberg78, absolute = relative tolerance"},
+        {method_kind::odeint_bulirsch_stoer, "odeint", true, true, needs::any,
+         "Boost.Odeint bulirsch_stoer, absolute = relative tolerance"},
     };
     return kinds;
 }
@@ -37,6 +43,11 @@ std::string why_not(needs n, const system_form& form) {
                                   : "needs Newton's form x'' = a(x, v, t); this system is Hamiltonian (use velocity_verlet)";
         case needs::damped_split:
             return form.damped_split ? "" : "needs a force split as F(x, t) - G(v); only damped_oscillator has one";
+        case needs::negative_potential:
+            if (!form.separable_hamiltonian) return why_not(needs::separable_hamiltonian, form);
+            return form.negative_potential ? ""
+                                           : "needs V(q) < 0 everywhere (the LogH time transformation divides by -V); "
+                                             "this system's potential is not negative (use the table itself)";
     }
     return "needs what no system offers";
 }
@@ -44,8 +55,8 @@ std::string why_not(needs n, const system_form& form) {
 std::vector<std::string> method_names_beside_tables() {
     std::vector<std::string> names;
     std::apply([&](const auto&... m) { (names.push_back(m.name), ...); }, classic_methods);
-    names.push_back("odeint_rk4");
-    names.push_back("odeint_dopri5");
+    for (const char* odeint : {"odeint_rk4", "odeint_dopri5", "odeint_fehlberg78", "odeint_bulirsch_stoer"})
+        names.push_back(odeint);
     return names;
 }
 
@@ -57,8 +68,16 @@ bool is_classic(const std::string& name) {
 
 std::optional<method_spec> resolve_method(const std::string& name, const std::map<std::string, table>& inline_tables) {
     if (auto it = inline_tables.find(name); it != inline_tables.end()) return method_spec{name, method_kind::table, it->second};
-    if (name == "odeint_rk4") return method_spec{name, method_kind::odeint_rk4, std::nullopt};
-    if (name == "odeint_dopri5") return method_spec{name, method_kind::odeint_dopri5, std::nullopt};
+    if (name.size() > 6 && name.rfind("logh(", 0) == 0 && name.back() == ')') {
+        auto inner = resolve_method(name.substr(5, name.size() - 6), inline_tables);
+        if (!inner || inner->kind != method_kind::table) return std::nullopt;
+        return method_spec{name, method_kind::logh, inner->coefficients};
+    }
+    for (const auto& [odeint, kind] : {std::pair{"odeint_rk4", method_kind::odeint_rk4},
+                                       std::pair{"odeint_dopri5", method_kind::odeint_dopri5},
+                                       std::pair{"odeint_fehlberg78", method_kind::odeint_fehlberg78},
+                                       std::pair{"odeint_bulirsch_stoer", method_kind::odeint_bulirsch_stoer}})
+        if (name == odeint) return method_spec{name, kind, std::nullopt};
     if (is_classic(name)) return method_spec{name, method_kind::classic, std::nullopt};
     const auto& names = catalog_names();
     if (std::find(names.begin(), names.end(), name) != names.end()) return method_spec{name, method_kind::table, method(name)};
@@ -66,7 +85,7 @@ std::optional<method_spec> resolve_method(const std::string& name, const std::ma
 }
 
 needs requirement_of(const method_spec& m) {
-    if (m.kind != method_kind::classic) return entry_of(m.kind).requirement;
+    if (m.kind != method_kind::classic) return entry_of(m.kind).requirement;  // logh: also a separable Hamiltonian
     needs n = needs::any;
     std::apply([&](const auto&... c) { ((m.name == c.name ? void(n = c.requirement) : void()), ...); }, classic_methods);
     return n;

@@ -14,12 +14,12 @@
 
 namespace sympl::app {
 
-enum class method_kind { table, classic, odeint_rk4, odeint_dopri5 };
+enum class method_kind { table, logh, classic, odeint_rk4, odeint_dopri5, odeint_fehlberg78, odeint_bulirsch_stoer };
 
 struct method_spec {
     std::string name;
     method_kind kind = method_kind::table;
-    std::optional<table> coefficients;  // for kind == table
+    std::optional<table> coefficients;  // for kind == table and logh
 };
 
 // What a system's equations offer a method.
@@ -27,9 +27,10 @@ struct system_form {
     bool separable_hamiltonian = false;  // H = T(p) + V(q): what a splitting table needs
     bool newtonian = false;              // x'' = a(x, v, t), q = x and p = v
     bool damped_split = false;           // a force split as F(x, t) - G(v)
+    bool negative_potential = false;     // V(q) < 0 everywhere (gravitation): what LogH needs
 };
 
-enum class needs { any, separable_hamiltonian, newtonian, damped_split };
+enum class needs { any, separable_hamiltonian, newtonian, damped_split, negative_potential };
 
 // Why a method that needs `n` cannot run on a system of `form` ("" when it can).
 std::string why_not(needs n, const system_form& form);
@@ -38,6 +39,7 @@ struct method_kind_entry {
     method_kind kind;
     const char* label;        // the kind column of work_precision.csv
     bool adaptive;            // swept over tolerances instead of step sizes
+    bool odeint;              // a Boost.Odeint stepper (the report's competitors)
     needs requirement;        // for classic methods: per method, see classic_methods
     const char* description;  // for listings and error messages
 };
@@ -70,12 +72,13 @@ inline constexpr std::tuple classic_methods{
                                                     "predictor-corrector (Gould & Tobochnik eqs. 3.69-3.70)"},
 };
 
-// The names a scene may give beside the catalog's and its own [[table]]s:
-// the classic steppers and the Odeint kinds.
+// The names a scene may give beside the catalog's and its own [[table]]s
+// (and logh(<table>)): the classic steppers and the Odeint kinds.
 std::vector<std::string> method_names_beside_tables();
 
 // The method a scene names: an inline table first, then an Odeint kind, a
-// classic stepper, a catalog table; nullopt when the name is none of these.
+// classic stepper, a catalog table, and logh(<any of the tables>) for the
+// table run in LogH fictitious time; nullopt when the name is none of these.
 std::optional<method_spec> resolve_method(const std::string& name, const std::map<std::string, table>& inline_tables);
 
 // What `m` needs of a system.

@@ -15,13 +15,15 @@
 namespace sympl::app {
 
 struct run_request {
-    double dt = 0;                        // fixed-step methods
-    double tolerance = 0;                 // odeint_dopri5 (absolute = relative)
+    double dt = 0;                        // fixed-step methods (logh: the fictitious step)
+    double tolerance = 0;                 // adaptive Odeint methods (absolute = relative)
+    bool observed = true;                 // the measured run (energy, trajectory, final state, blow-up)
     bool energy = false;                  // track the max relative energy error
     std::size_t energy_series_every = 0;  // record (t, energy error) every k steps
     std::size_t trajectory_every = 0;     // write t, q, p every k steps to *trajectory
     std::ostream* trajectory = nullptr;
-    int timing_repeats = 1;               // wall time: best of this many unobserved runs (0: no timing)
+    int timing_repeats = 1;               // wall-time measurements of unobserved runs (0: no timing)
+    double min_measurement = 2e-3;        // each measurement repeats the run until it lasts this long [s]
 };
 
 struct run_result {
@@ -31,7 +33,8 @@ struct run_result {
     std::string failure;          // unstable: the message
     std::size_t steps = 0;
     std::uint64_t force_evaluations = 0;
-    double seconds = -1;            // best wall time (-1: not timed)
+    double seconds = -1;            // median wall time of one run (-1: not timed)
+    double seconds_min = -1, seconds_max = -1;
     double max_energy_error = -1;   // -1: not measured (or no energy: not Hamiltonian)
     std::vector<double> final_state;
     std::vector<std::pair<double, double>> energy_series;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <iomanip>
 #include <map>
+#include <optional>
 #include <memory>
 #include <ostream>
 #include <set>
@@ -15,6 +16,7 @@
 #include "loop_area.hpp"
 #include "reference.hpp"
 #include "studies/study.hpp"
+#include "work_precision.hpp"
 #include "writers.hpp"
 
 namespace sympl::app {
@@ -30,26 +32,45 @@ struct row {
     run_result r;
     double final_error = -1;
     double loop_area_error = -1;  // only where the scene asks for it
+    std::vector<double> times;    // one per timing round
 };
 
 std::string csv_number(double v) { return v < 0 ? "" : format_number(v, 6); }
 
-// Fastest time to reach `level` for one method (infinity when never reached).
-double time_to_reach(const std::vector<row>& rows, const scene& s, const std::string& method, double level) {
-    double best = HUGE_VAL;
+// One method's measured runs on one scene, as a work-precision curve.
+std::vector<work_point> curve_of(const std::vector<row>& rows, const scene& s, const method_spec& m) {
+    std::vector<work_point> curve;
     for (const row& r : rows)
-        if (r.s == &s && r.method->name == method && r.r.stable && r.final_error >= 0 && r.final_error <= level &&
-            r.r.seconds >= 0)
-            best = std::min(best, r.r.seconds);
-    return best;
+        if (r.s == &s && r.method == &m && r.r.stable && r.final_error >= 0)
+            curve.push_back({r.r.seconds, r.final_error, r.dt > 0 ? r.dt : r.tolerance});
+    return curve;
+}
+
+// The fastest method of a group (sympl's or Odeint's) at one level.
+struct verdict {
+    const method_spec* method = nullptr;
+    std::optional<time_to_accuracy> reach;
+    double best_error = HUGE_VAL;  // the smallest error any of the group reached
+};
+
+verdict fastest(const std::vector<row>& rows, const scene& s, double level, bool odeint) {
+    verdict v;
+    for (const method_spec& m : s.methods) {
+        if (entry_of(m.kind).odeint != odeint) continue;
+        const auto curve = curve_of(rows, s, m);
+        for (const work_point& p : curve) v.best_error = std::min(v.best_error, p.error);
+        const auto reach = time_to_reach(curve, level);
+        if (reach && (!v.reach || reach->seconds < v.reach->seconds)) v.method = &m, v.reach = reach;
+    }
+    return v;
 }
 
 void write_work_precision_csv(const std::vector<row>& rows, const std::map<const scene*, reference_state>& references,
                               const fs::path& dir) {
     atomic_file csv(dir / "work_precision.csv");
     csv.stream() << csv_line({"scene", "method", "kind", "dt", "tolerance", "status", "blowup_step", "blowup_time", "steps",
-                              "force_evaluations", "seconds", "max_energy_error", "final_error", "reference_error",
-                              "loop_area_error"});
+                              "force_evaluations", "seconds", "seconds_min", "seconds_max", "max_energy_error",
+                              "final_error", "reference_error", "loop_area_error"});
     for (const row& r : rows) {
         const bool ok = r.r.stable;
         csv.stream() << csv_line({r.s->name, r.method->name, entry_of(r.method->kind).label,
@@ -57,6 +78,7 @@ void write_work_precision_csv(const std::vector<row>& rows, const std::map<const
                                   ok ? "stable" : "unstable", ok ? "" : std::to_string(r.r.blowup_step),
                                   ok ? "" : format_number(r.r.blowup_time, 8), ok ? std::to_string(r.r.steps) : "",
                                   ok ? std::to_string(r.r.force_evaluations) : "", ok ? csv_number(r.r.seconds) : "",
+                                  ok ? csv_number(r.r.seconds_min) : "", ok ? csv_number(r.r.seconds_max) : "",
                                   ok ? csv_number(r.r.max_energy_error) : "", ok ? csv_number(r.final_error) : "",
                                   format_number(references.at(r.s).error, 3), ok ? csv_number(r.loop_area_error) : ""});
     }
@@ -76,7 +98,7 @@ void plot_work_precision(const std::vector<row>& rows, const std::vector<scene>&
         const scene& s = scenes[k];
         const fs::path data = dir / ("wp_" + std::to_string(k + 1) + "_" + file_name_part(s.name) + ".dat");
         auto d = std::make_unique<atomic_file>(data);
-        for (const method_spec& m : s.methods) {
+        for (const scene_method& m : s.methods) {
             int points = 0;
             for (const row& r : rows)
                 if (r.s == &s && r.method == &m && r.r.stable && r.final_error > 0 && r.r.seconds > 0) {
@@ -99,35 +121,49 @@ void plot_work_precision(const std::vector<row>& rows, const std::vector<scene>&
     run_gnuplot(dir / "work_precision.gp", dir / "work_precision.png");
 }
 
-// The section "fastest method per accuracy level", in markdown and as the table printed at the end.
+// The section "fastest method per accuracy level" in markdown, the table
+// printed at the end, and time_to_accuracy.csv with the bracketing runs.
 void fastest_per_level(const std::vector<row>& rows, const std::vector<scene>& scenes, std::ostream& md,
-                       std::ostream& table) {
+                       std::ostream& table, const fs::path& dir) {
     md << "## Fastest method per accuracy level\n\n"
-       << "| scene | level | fastest | time [s] | vs odeint_rk4 | vs odeint_dopri5 |\n|---|---|---|---|---|---|\n";
-    table << std::left << std::setw(22) << "scene" << std::setw(8) << "level" << std::setw(26) << "fastest" << std::right
-          << std::setw(12) << "time [s]" << std::setw(14) << "x odeint_rk4" << std::setw(16) << "x odeint_dopri5" << "\n";
+       << "Time to a final error of 1e-4, 1e-8 and 1e-12, read off each method's work-precision curve by log-log "
+          "interpolation between the two runs that bracket the level (time_to_accuracy.csv lists them). Odeint: the "
+          "fastest of the Odeint steppers of the scene over all their tolerances.\n\n"
+       << "| scene | level | fastest sympl method | time [s] | fastest Odeint method | time [s] | Odeint / sympl |\n"
+       << "|---|---|---|---|---|---|---|\n";
+    table << std::left << std::setw(22) << "scene" << std::setw(8) << "level" << std::setw(30) << "fastest sympl"
+          << std::right << std::setw(10) << "time [s]" << "  " << std::left << std::setw(24) << "fastest Odeint" << std::right
+          << std::setw(10) << "time [s]" << std::setw(10) << "ratio" << "\n";
+    atomic_file csv(dir / "time_to_accuracy.csv");
+    csv.stream() << csv_line({"scene", "level", "method", "seconds", "bracketed", "above_dt_or_tolerance", "above_error",
+                              "above_seconds", "below_dt_or_tolerance", "below_error", "below_seconds"});
     for (const scene& s : scenes) {
         for (double level : {1e-4, 1e-8, 1e-12}) {
-            std::string best;
-            double best_t = HUGE_VAL;
-            for (const method_spec& m : s.methods) {
-                const double t = time_to_reach(rows, s, m.name, level);
-                if (t < best_t) best_t = t, best = m.name;
-            }
-            const double rk = time_to_reach(rows, s, "odeint_rk4", level), dp = time_to_reach(rows, s, "odeint_dopri5", level);
-            const auto ratio = [&](double base) {
-                return std::isfinite(base) && std::isfinite(best_t) ? format_number(base / best_t, 3) + "x"
-                                                                     : std::string("not reached");
+            for (const method_spec& m : s.methods)
+                if (const auto r = time_to_reach(curve_of(rows, s, m), level))
+                    csv.stream() << csv_line({s.name, format_number(level), m.name, format_number(r->seconds, 6),
+                                              r->bracketed ? "yes" : "no", format_number(r->above.parameter, 6),
+                                              format_number(r->above.error, 6), format_number(r->above.seconds, 6),
+                                              format_number(r->below.parameter, 6), format_number(r->below.error, 6),
+                                              format_number(r->below.seconds, 6)});
+            const verdict ours = fastest(rows, s, level, false), theirs = fastest(rows, s, level, true);
+            const auto name = [](const verdict& v) {
+                if (v.method) return v.method->name;
+                return std::isfinite(v.best_error) ? "not reached (best " + format_number(v.best_error, 2) + ")"
+                                                   : std::string("none");
             };
-            const std::string fastest = std::isfinite(best_t) ? best : "none reached it";
-            const std::string time = std::isfinite(best_t) ? format_number(best_t, 3) : "-";
-            md << "| " << markdown_cell(s.name) << " | " << format_number(level) << " | " << markdown_cell(fastest) << " | "
-               << time << " | " << ratio(rk) << " | " << ratio(dp) << " |\n";
-            table << std::left << std::setw(22) << s.name << std::setw(8) << format_number(level) << std::setw(26)
-                  << fastest << std::right << std::setw(12) << time << std::setw(14) << ratio(rk) << std::setw(16)
-                  << ratio(dp) << "\n";
+            const auto time = [](const verdict& v) { return v.reach ? format_number(v.reach->seconds, 3) : "-"; };
+            const std::string ratio =
+                ours.reach && theirs.reach ? format_number(theirs.reach->seconds / ours.reach->seconds, 3) + "x" : "-";
+            md << "| " << markdown_cell(s.name) << " | " << format_number(level) << " | " << markdown_cell(name(ours))
+               << " | " << time(ours) << " | " << markdown_cell(name(theirs)) << " | " << time(theirs) << " | " << ratio
+               << " |\n";
+            table << std::left << std::setw(22) << s.name << std::setw(8) << format_number(level) << std::setw(30)
+                  << name(ours) << std::right << std::setw(10) << time(ours) << "  " << std::left << std::setw(24)
+                  << name(theirs) << std::right << std::setw(10) << time(theirs) << std::setw(10) << ratio << "\n";
         }
     }
+    csv.commit();
     md << "\n";
 }
 
@@ -147,24 +183,24 @@ void run_report(const std::vector<scene>& scenes, const report_options& options,
     const progress bar;
     std::vector<row> rows;
     std::map<const scene*, reference_state> references;
-    const int repeats = options.quick ? 2 : 5;
+    const int rounds = options.quick ? 3 : 5;
     for (std::size_t k = 0; k < scenes.size(); ++k) {
         const scene& s = scenes[k];
         const problem& p = problems[k];
         const std::string head = "[" + std::to_string(k + 1) + "/" + std::to_string(scenes.size()) + "] " + s.name;
         bar.show(head + ": reference");
         const reference_state& ref = references[&s] =
-            make_reference(s, p, *std::min_element(s.dt.begin(), s.dt.end()), dir / "cache");
-        for (const method_spec& m : s.methods) {
+            make_reference(s, p, finest_step(s), dir / "cache");
+        for (const scene_method& m : s.methods) {
             const bool adaptive = entry_of(m.kind).adaptive;
-            for (double v : adaptive ? s.tolerances : s.dt) {
+            for (double v : sweep_of(s, m)) {
                 bar.show(head + ": " + m.name + " " + format_number(v));
-                row r{&s, &m, adaptive ? 0.0 : v, adaptive ? v : 0.0, {}, -1};
+                row r{&s, &m, adaptive ? 0.0 : v, adaptive ? v : 0.0, {}, -1, -1, {}};
                 run_request rq;
                 rq.dt = v;
                 rq.tolerance = v;
                 rq.energy = p.hamiltonian;
-                rq.timing_repeats = repeats;
+                rq.timing_repeats = 0;
                 r.r = p.run(m, rq, s.t0, s.t_end, p.x0);
                 if (r.r.stable) r.final_error = relative_difference(r.r.final_state, ref.x);
                 if (r.r.stable && s.output.loop_area) r.loop_area_error = loop_area_error(p, m, rq, s.t0, s.t_end);
@@ -172,16 +208,39 @@ void run_report(const std::vector<scene>& scenes, const report_options& options,
             }
         }
     }
+    // Timing: rounds over every stable run, interleaved between methods, so a
+    // slow spell of a shared machine falls on all of them; median, min, max.
+    for (int round = 0; round < rounds; ++round) {
+        bar.show("timing, round " + std::to_string(round + 1) + " of " + std::to_string(rounds));
+        for (row& r : rows) {
+            if (!r.r.stable) continue;
+            const std::size_t k = std::size_t(r.s - scenes.data());
+            run_request rq;
+            rq.dt = r.dt > 0 ? r.dt : r.tolerance;
+            rq.tolerance = rq.dt;
+            rq.observed = false;
+            rq.timing_repeats = 1;
+            rq.min_measurement = options.quick ? 1e-3 : 5e-3;
+            r.times.push_back(problems[k].run(*r.method, rq, r.s->t0, r.s->t_end, problems[k].x0).seconds);
+        }
+    }
+    for (row& r : rows) {
+        if (r.times.empty()) continue;
+        std::sort(r.times.begin(), r.times.end());
+        r.r.seconds = r.times[r.times.size() / 2];
+        r.r.seconds_min = r.times.front();
+        r.r.seconds_max = r.times.back();
+    }
     write_work_precision_csv(rows, references, dir);
 
     std::ostringstream md, table;
     md << "# sympl work-precision report\n\n" << (options.quick ? "Quick run (`--quick`): short spans, few steps.\n\n" : "")
        << "Final error: max |x - x_ref| / max |x_ref| at t_end against the exact solution or a Sofroniou-Spaletta 10 "
-          "reference in long double (its own error in work_precision.csv). Wall time: best of "
-       << repeats << " runs with nothing observed. Speed-up: time Odeint needs for the same accuracy divided by the "
-          "fastest method's time (log-linear interpolation is not used: each is the fastest measured run that reaches "
-          "the level).\n\n";
-    fastest_per_level(rows, scenes, md, table);
+          "reference in long double (its own error in work_precision.csv). Wall time: median of "
+       << rounds << " measurements with nothing observed, taken in rounds over all runs (interleaved between methods); "
+          "each measurement repeats the run until it lasts "
+       << (options.quick ? "1 ms" : "5 ms") << " (min and max in work_precision.csv).\n\n";
+    fastest_per_level(rows, scenes, md, table, dir);
     const bool plots = options.plots && have_gnuplot();
     if (plots) plot_work_precision(rows, scenes, dir);
     energy_series_study(scenes, dir, plots);

@@ -1,6 +1,7 @@
 // The single-scene run.
 #include "run_scene.hpp"
 
+#include <algorithm>
 #include <iomanip>
 #include <memory>
 #include <ostream>
@@ -69,15 +70,19 @@ std::string as_text(const scene& s, const outcome& o) {
 
 void run_scene(const scene& s, bool json, std::ostream& out) {
     const problem p = problem_of(s);
-    const reference_state ref = make_reference(s, p, s.dt.front());
+    // The reference resolves the steps this run takes (the first of each sweep).
+    double finest = s.dt.front();
+    for (const scene_method& m : s.methods)
+        if (!entry_of(m.kind).adaptive && m.kind != method_kind::logh) finest = std::min(finest, sweep_of(s, m).front());
+    const reference_state ref = make_reference(s, p, finest);
     const fs::path dir = s.output.directory;
     fs::create_directories(dir);
     std::vector<outcome> outcomes;
     std::vector<std::unique_ptr<atomic_file>> files;  // committed together at the end
-    for (const method_spec& m : s.methods) {
+    for (const scene_method& m : s.methods) {
         run_request rq;
-        rq.dt = s.dt.front();
-        rq.tolerance = s.tolerances.front();
+        rq.dt = sweep_of(s, m).front();
+        rq.tolerance = rq.dt;
         rq.energy = s.output.energy_error && p.hamiltonian;
         rq.timing_repeats = 1;
         std::unique_ptr<atomic_file> trajectory;
@@ -85,8 +90,8 @@ void run_scene(const scene& s, bool json, std::ostream& out) {
             trajectory = std::make_unique<atomic_file>(dir / (file_name_part(s.name) + "_" + file_name_part(m.name) +
                                                               "_trajectory.csv"));
             std::vector<std::string> header{"t"};
-            for (std::size_t i = 0; i < p.degrees_of_freedom; ++i) header.push_back("q" + std::to_string(i));
-            for (std::size_t i = 0; i < p.degrees_of_freedom; ++i) header.push_back("p" + std::to_string(i));
+            for (const char* coordinate : {"q", "p"})
+                for (std::size_t i = 0; i < p.degrees_of_freedom; ++i) header.push_back(coordinate + std::to_string(i));
             trajectory->stream() << csv_line(header) << std::setprecision(17);
             rq.trajectory = &trajectory->stream();
             rq.trajectory_every = s.output.trajectory_every;

@@ -3,9 +3,11 @@
 // makes a system of hamiltonians/ into the program's type-erased problem.
 // Included by systems.cpp only: every system is instantiated there once.
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <ostream>
 #include <tuple>
 #include <type_traits>
@@ -22,11 +24,29 @@ namespace sympl::app {
 
 namespace detail {
 
-using State = phase_space<double>;
-using Vec = State::vector;
 namespace odeint = boost::numeric::odeint;
 
-inline State to_state(const std::vector<double>& x) { return from_stacked<State>(x); }
+// States of Dim degrees of freedom: fixed-size for small systems, as a
+// library user would write them (the program's timings are theirs).
+template <int Dim>
+using state_of = phase_space<double, Dim>;
+
+// Odeint's state: std::array for a fixed size, std::vector otherwise.
+template <int Dim>
+struct odeint_state_of {
+    using type = std::array<double, std::size_t(2 * Dim)>;
+};
+template <>
+struct odeint_state_of<Eigen::Dynamic> {
+    using type = std::vector<double>;
+};
+template <int Dim>
+using odeint_state = typename odeint_state_of<Dim>::type;
+
+template <int Dim, class Container>
+state_of<Dim> to_state(const Container& x) {
+    return from_stacked<state_of<Dim>>(x);
+}
 
 // Any state as stacked doubles (the reference runs in long double).
 template <class X>
@@ -35,53 +55,69 @@ std::vector<double> to_vector(const X& x) {
     return {y.begin(), y.end()};
 }
 
+template <int Dim>
+odeint_state<Dim> to_odeint(const state_of<Dim>& x) {
+    odeint_state<Dim> y{};
+    if constexpr (Dim == Eigen::Dynamic) y.resize(std::size_t(2 * x.size()));
+    const auto v = stacked(x);
+    std::copy(v.begin(), v.end(), y.begin());
+    return y;
+}
+
 inline double clock_seconds() {
     return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-// The first-order form dx/dt of any system, for Odeint, on stacked vectors.
+// The first-order form dx/dt of any system, for Odeint, on stacked states.
 // Odeint copies the system at every step, so the workspace lives outside it:
 // no allocation per evaluation.
+template <int Dim>
 struct workspace {
-    Vec q, p, a, b;
+    using vector = typename state_of<Dim>::vector;
+    vector q, p, a, b;
     std::uint64_t evaluations = 0;
 };
 
-template <class Sys>
+template <class Sys, int Dim>
 struct first_order {
+    using vector = typename state_of<Dim>::vector;
     const Sys* sys;
-    workspace* w;
-    void operator()(const std::vector<double>& x, std::vector<double>& dxdt, double t) const {
+    workspace<Dim>* w;
+    void operator()(const odeint_state<Dim>& x, odeint_state<Dim>& dxdt, double t) const {
         const auto n = static_cast<Eigen::Index>(x.size() / 2);
-        w->q = Eigen::Map<const Vec>(x.data(), n);
-        w->p = Eigen::Map<const Vec>(x.data() + n, n);
-        if constexpr (separable_hamiltonian<Sys, Vec>) {
+        w->q = Eigen::Map<const vector>(x.data(), n);
+        w->p = Eigen::Map<const vector>(x.data() + n, n);
+        if constexpr (separable_hamiltonian<Sys, vector>) {
             velocity(*sys, w->p, w->a);
             force(*sys, w->q, w->b);
         } else {
             sys->dq_dt(w->q, w->p, t, w->a);
             sys->dp_dt(w->q, w->p, t, w->b);
         }
-        Eigen::Map<Vec>(dxdt.data(), n) = w->a;
-        Eigen::Map<Vec>(dxdt.data() + n, n) = w->b;
+        Eigen::Map<vector>(dxdt.data(), n) = w->a;
+        Eigen::Map<vector>(dxdt.data() + n, n) = w->b;
         ++w->evaluations;
     }
 };
 
 // Whether a system of type Sys meets a method's requirement: decided by the
 // library's concepts, at compile time; form_of<Sys>() is the registry's copy.
+// (V < 0 is a property of the system's values, given by its registry entry.)
 template <needs N, class Sys>
 constexpr bool meets() {
+    using State = phase_space<double>;
     using E = decltype(equations_of<State>(std::declval<Sys>()));
     if constexpr (N == needs::any) return true;
-    else if constexpr (N == needs::separable_hamiltonian) return separable_hamiltonian<Sys, Vec>;
+    else if constexpr (N == needs::separable_hamiltonian || N == needs::negative_potential)
+        return separable_hamiltonian<Sys, State::vector>;
     else if constexpr (N == needs::newtonian) return newtonian_form<E>;
     else return damped_newtonian_form<E, State>;
 }
 
 template <class Sys>
 system_form form_of() {
-    return {meets<needs::separable_hamiltonian, Sys>(), meets<needs::newtonian, Sys>(), meets<needs::damped_split, Sys>()};
+    return {meets<needs::separable_hamiltonian, Sys>(), meets<needs::newtonian, Sys>(), meets<needs::damped_split, Sys>(),
+            false};
 }
 
 template <class Sys>
@@ -89,15 +125,49 @@ template <class Sys>
     throw invalid_argument("method '" + method + "' " + why_not(n, form_of<Sys>()));
 }
 
-template <class Sys>
+template <class Sys, int Dim>
 class runner {
 public:
+    using State = state_of<Dim>;
+    using OdeState = odeint_state<Dim>;
+
     runner(Sys sys, std::function<double(const std::vector<double>&)> energy) : sys_(std::move(sys)), energy_(std::move(energy)) {}
 
     run_result operator()(const method_spec& m, const run_request& rq, double t0, double t_end,
                           const std::vector<double>& x0) const {
         run_result r;
-        // The measured run: observed every step for energy, trajectory and blow-up.
+        if (rq.observed) {
+            observed_run(m, rq, t0, t_end, x0, r);
+            if (!r.stable) return r;
+        }
+        // Timing: the same run with nothing observed. Each measurement repeats
+        // the run until it lasts min_measurement seconds; median, min and max.
+        std::vector<double> samples;
+        for (int k = 0; k < rq.timing_repeats; ++k) {
+            std::size_t runs = 0;
+            const double start = clock_seconds();
+            double elapsed = 0;
+            do {
+                State y = to_state<Dim>(x0);
+                drive(m, rq, t0, t_end, y, no_observer{}, false);
+                ++runs;
+                elapsed = clock_seconds() - start;
+            } while (elapsed < rq.min_measurement);
+            samples.push_back(elapsed / double(runs));
+        }
+        if (!samples.empty()) {
+            std::sort(samples.begin(), samples.end());
+            r.seconds = samples[samples.size() / 2];
+            r.seconds_min = samples.front();
+            r.seconds_max = samples.back();
+        }
+        return r;
+    }
+
+private:
+    // The measured run: observed every step for energy, trajectory and blow-up.
+    void observed_run(const method_spec& m, const run_request& rq, double t0, double t_end, const std::vector<double>& x0,
+                      run_result& r) const {
         const bool energy = rq.energy && energy_;
         const double e0 = energy ? energy_(x0) : 0;
         const double scale = e0 != 0 ? std::fabs(e0) : 1;
@@ -106,7 +176,7 @@ public:
         constexpr double divergence = 1e3;
         double size0 = 1;
         for (double v : x0) size0 = std::max(size0, std::fabs(v));
-        const auto observe = [&](const auto& x, double t) {
+        const auto observe = [&](const State& x, double t) {
             if (energy || rq.energy_series_every || rq.trajectory_every) buffer = stacked(x);
             if (energy) {
                 const double err = std::fabs(energy_(buffer) - e0) / scale;
@@ -116,8 +186,7 @@ public:
                 if (rq.energy_series_every && step % rq.energy_series_every == 0) r.energy_series.emplace_back(t, err);
             }
             if (!energy) {  // no energy to watch (damped systems): watch the size of the state
-                double size = 0;
-                for (Eigen::Index i = 0; i < x.q.size(); ++i) size = std::max({size, std::fabs(double(x.q[i])), std::fabs(double(x.p[i]))});
+                const double size = std::max(x.q.cwiseAbs().maxCoeff(), x.p.cwiseAbs().maxCoeff());
                 if (size > 1e12 * size0) diverged("|x| grew by more than 1e12", step, t);
             }
             if (rq.trajectory && rq.trajectory_every && step % rq.trajectory_every == 0) {
@@ -128,7 +197,7 @@ public:
             ++step;
         };
         if (energy) r.max_energy_error = 0;
-        State x = to_state(x0);
+        State x = to_state<Dim>(x0);
         try {
             const auto [steps, forces] = drive(m, rq, t0, t_end, x, observe, true);
             r.steps = steps;
@@ -140,20 +209,10 @@ public:
             r.blowup_time = e.time;
             r.failure = e.what();
             r.max_energy_error = -1;
-            return r;
         }
-        // Timing: the same run with nothing observed, best of several.
-        for (int k = 0; k < rq.timing_repeats; ++k) {
-            State y = to_state(x0);
-            const double start = clock_seconds();
-            drive(m, rq, t0, t_end, y, no_observer{}, false);
-            const double s = clock_seconds() - start;
-            r.seconds = r.seconds < 0 ? s : std::min(r.seconds, s);
-        }
-        return r;
     }
 
-    // Runs the span, calling obs(x, t) after every step when observed.
+    // Runs the span, calling obs(x, t) at t0 and after every step when observed.
     // Returns (steps, force evaluations).
     template <class Observer>
     std::pair<std::size_t, std::uint64_t> drive(const method_spec& m, const run_request& rq, double t0, double t_end,
@@ -172,21 +231,52 @@ public:
                     return with_driver(splitting_stepper<Sys, State>(sys_, *m.coefficients));
                 else
                     refuse<Sys>(m.name, needs::separable_hamiltonian);
+            case method_kind::logh:
+                if constexpr (meets<needs::separable_hamiltonian, Sys>())
+                    return in_logh_time(*m.coefficients, rq.dt, t0, t_end, x, obs, observed);
+                else
+                    refuse<Sys>(m.name, needs::separable_hamiltonian);
             case method_kind::classic:
                 return classic(m.name, with_driver);
             case method_kind::odeint_rk4:
                 return odeint_fixed(rq.dt, t0, t_end, x, obs, observed);
             case method_kind::odeint_dopri5:
-                return odeint_adaptive(rq.tolerance, t0, t_end, x, obs, observed);
+                return odeint_adaptive(
+                    m.name, odeint::make_controlled(rq.tolerance, rq.tolerance, odeint::runge_kutta_dopri5<OdeState>()),
+                    t0, t_end, x, obs, observed);
+            case method_kind::odeint_fehlberg78:
+                return odeint_adaptive(
+                    m.name, odeint::make_controlled(rq.tolerance, rq.tolerance, odeint::runge_kutta_fehlberg78<OdeState>()),
+                    t0, t_end, x, obs, observed);
+            case method_kind::odeint_bulirsch_stoer:
+                return odeint_adaptive(m.name, odeint::bulirsch_stoer<OdeState>(rq.tolerance, rq.tolerance), t0, t_end, x,
+                                       obs, observed);
         }
         throw invalid_argument("method '" + m.name + "' is of an unknown kind");
     }
 
-private:
     [[noreturn]] static void diverged(const std::string& what, std::size_t step, double t) {
         throw integration_error("the run diverged: " + what + " after step " + std::to_string(step) + " (t = " +
                                     format_number(t, 17) + ")",
                                 step, t);
+    }
+
+    // The table in LogH fictitious time (time_transformation.hpp); ds = dt.
+    template <class Observer>
+    std::pair<std::size_t, std::uint64_t> in_logh_time(const table& t, double ds, double t0, double t_end, State& x,
+                                                       Observer& obs, bool observed) const {
+        using Extended = phase_space<double, extended_dimension(Dim)>;
+        Extended X = to_extended(sys_, x, t0);
+        splitting_stepper<logh<Sys>, Extended> stepper(logh<Sys>{sys_}, t);
+        run_summary s;
+        if (observed) {
+            obs(std::as_const(x), t0);
+            s = integrate_to_time(stepper, X, t_end, ds, [&](const Extended& y, double time) { obs(physical_state(y), time); });
+        } else {
+            s = integrate_to_time(stepper, X, t_end, ds);
+        }
+        x = physical_state(X);
+        return {s.steps, s.force_evaluations};
     }
 
     // The classic stepper of that name (classic_methods), where the system meets its requirement.
@@ -205,7 +295,7 @@ private:
         return *done;
     }
 
-    static void check_step(const std::vector<double>& y, std::size_t step, double t, double h) {
+    static void check_step(const OdeState& y, std::size_t step, double t, double h) {
         for (double v : y)
             if (!std::isfinite(v)) throw blow_up(step, t, h);
     }
@@ -213,56 +303,52 @@ private:
     template <class Observer>
     std::pair<std::size_t, std::uint64_t> odeint_fixed(double dt, double t0, double t_end, State& x, Observer& obs,
                                                        bool observed) const {
-        workspace w;
-        first_order<Sys> f{&sys_, &w};
-        std::vector<double> y = to_vector(x);
-        odeint::runge_kutta4<std::vector<double>> rk4;
+        workspace<Dim> w;
+        first_order<Sys, Dim> f{&sys_, &w};
+        OdeState y = to_odeint<Dim>(x);
+        odeint::runge_kutta4<OdeState> rk4;
         const auto n = static_cast<std::size_t>(std::floor((t_end - t0) / dt));
         double rest = (t_end - t0) - double(n) * dt;
         if (rest <= 8 * std::numeric_limits<double>::epsilon() * (t_end - t0)) rest = 0;
-        State view = x;
-        if (observed) obs(view, t0);  // like sympl's driver: the observer sees t0 first
+        if (observed) obs(std::as_const(x), t0);  // like sympl's driver: the observer sees t0 first
         const std::size_t total = n + (rest > 0 ? 1 : 0);
         for (std::size_t i = 0; i < total; ++i) {
             const double t = t0 + double(i) * dt, h = i < n ? dt : rest;
             rk4.do_step(f, y, t, h);
             if (observed) {
                 check_step(y, i + 1, t, h);
-                view = to_state(y);
-                obs(view, t + h);
+                obs(to_state<Dim>(y), t + h);
             }
         }
         if (!observed) check_step(y, total, t_end, dt);
-        x = to_state(y);
+        x = to_state<Dim>(y);
         return {total, w.evaluations};
     }
 
-    template <class Observer>
-    std::pair<std::size_t, std::uint64_t> odeint_adaptive(double tolerance, double t0, double t_end, State& x,
-                                                          Observer& obs, bool observed) const {
-        workspace w;
-        first_order<Sys> f{&sys_, &w};
-        std::vector<double> y = to_vector(x);
-        auto stepper = odeint::make_controlled(tolerance, tolerance, odeint::runge_kutta_dopri5<std::vector<double>>());
+    // Any Odeint controlled stepper (try_step), from t0 to exactly t_end.
+    template <class Controlled, class Observer>
+    std::pair<std::size_t, std::uint64_t> odeint_adaptive(const std::string& name, Controlled stepper, double t0,
+                                                          double t_end, State& x, Observer& obs, bool observed) const {
+        workspace<Dim> w;
+        first_order<Sys, Dim> f{&sys_, &w};
+        OdeState y = to_odeint<Dim>(x);
         double t = t0, h = (t_end - t0) / 1000;
         std::size_t steps = 0, failed = 0;
-        State view = x;
-        if (observed) obs(view, t0);
+        if (observed) obs(std::as_const(x), t0);
         while (t < t_end) {
             if (t + h > t_end) h = t_end - t;
+            if (!(h > 1e-14 * (t_end - t0)) || t + h == t || ++failed > 500)
+                throw integration_error(name + ": step size underflow at t = " + format_number(t, 17) + " (dt = " +
+                                            format_number(h, 3) + ")",
+                                        steps + 1, t);
             if (stepper.try_step(f, y, t, h) == odeint::success) {
                 ++steps;
                 failed = 0;
                 check_step(y, steps, t, h);
-                if (observed) {
-                    view = to_state(y);
-                    obs(view, t);
-                }
-            } else if (++failed > 500 || h < 1e-14 * (t_end - t0)) {
-                throw integration_error("odeint_dopri5: step size underflow at t = " + std::to_string(t), steps + 1, t);
+                if (observed) obs(to_state<Dim>(y), t);
             }
         }
-        x = to_state(y);
+        x = to_state<Dim>(y);
         return {steps, w.evaluations};
     }
 
@@ -274,11 +360,14 @@ private:
 
 // A system of hamiltonians/ as the program's problem: its default state x0
 // and, when it has one, its exact solution from x0.
-template <class Sys>
+// Dim: the degrees of freedom when fixed (small systems), Eigen::Dynamic otherwise.
+template <int Dim = Eigen::Dynamic, class Sys>
 problem model(Sys sys, std::vector<double> x0, std::function<std::vector<double>(double)> exact = nullptr) {
-    using detail::State;
-    using detail::to_state;
+    using State = phase_space<double>;
     using detail::to_vector;
+    if (Dim != Eigen::Dynamic && x0.size() != std::size_t(2 * Dim))
+        throw invalid_argument("model: a state of " + std::to_string(x0.size()) + " numbers for " + std::to_string(Dim) +
+                               " degrees of freedom");
     problem p;
     p.form = detail::form_of<Sys>();
     p.hamiltonian = p.form.separable_hamiltonian;
@@ -286,7 +375,7 @@ problem model(Sys sys, std::vector<double> x0, std::function<std::vector<double>
     p.x0 = std::move(x0);
     p.exact = std::move(exact);
     if constexpr (separable_hamiltonian<Sys, State::vector>) {
-        p.energy = [sys](const std::vector<double>& x) { return energy(sys, to_state(x)); };
+        p.energy = [sys](const std::vector<double>& x) { return energy(sys, from_stacked<State>(x)); };
         p.reference = [sys](double t0, double t_end, double dt, const std::vector<double>& x) {
             using L = phase_space<long double>;
             L y = from_stacked<L>(x);
@@ -296,13 +385,13 @@ problem model(Sys sys, std::vector<double> x0, std::function<std::vector<double>
         };
     } else {
         p.reference = [sys](double t0, double t_end, double dt, const std::vector<double>& x) {
-            State y = to_state(x);
+            State y = from_stacked<State>(x);
             auto s4 = make_classic<rk4, State>(sys);
             integrate_until(s4, y, t0, t_end, dt);
             return to_vector(y);
         };
     }
-    p.run = detail::runner<Sys>(sys, p.energy);
+    p.run = detail::runner<Sys, Dim>(sys, p.energy);
     return p;
 }
 

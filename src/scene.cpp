@@ -93,11 +93,24 @@ struct reader {
     }
 };
 
-method_spec method_by_name(const reader& r, const toml::node& n, const std::map<std::string, table>& inline_tables) {
-    const std::string name = r.string(n, "methods");
-    if (auto m = resolve_method(name, inline_tables)) return *m;
-    r.fail(n, "unknown method '" + name + "'; expected a catalog name (sympl tables), an inline [[table]], or one of: " +
-                  join(method_names_beside_tables()));
+// "name" or {name = "name", dt = ..., tolerances = ...}
+scene_method method_by_name(const reader& r, const toml::node& n, const std::map<std::string, table>& inline_tables) {
+    const toml::node* name_node = &n;
+    const toml::table* t = n.as_table();
+    if (t) {
+        r.only_keys(*t, {"name", "dt", "tolerances"}, "a method");
+        name_node = t->get("name");
+        if (!name_node) r.fail(n, "a method given as a table needs a name");
+    }
+    const std::string name = r.string(*name_node, "methods");
+    const auto m = resolve_method(name, inline_tables);
+    if (!m)
+        r.fail(*name_node, "unknown method '" + name + "'; expected a catalog name (sympl tables), an inline [[table]], "
+                           "logh(<table>), or one of: " + join(method_names_beside_tables()));
+    scene_method sm{*m, {}, {}};
+    if (t && t->get("dt")) sm.dt = r.sweep(*t->get("dt"), "dt");
+    if (t && t->get("tolerances")) sm.tolerances = r.sweep(*t->get("tolerances"), "tolerances");
+    return sm;
 }
 
 // [[table]] name = "...", kick = [...], drift = [...], order = 4, convention = "kick-first"
@@ -203,7 +216,13 @@ scene parse_scene(const std::string& text, const std::string& source, bool quick
     if (!methods) r.fail(top, "missing 'methods'; expected an array of method names");
     const toml::array* ma = methods->as_array();
     if (!ma || ma->empty()) r.fail(*methods, "'methods' must be a non-empty array of method names");
-    for (const auto& m : *ma) s.methods.push_back(method_by_name(r, m, inline_tables));
+    if (ma->size() > 1000) r.fail(*methods, std::to_string(ma->size()) + " methods; expected at most 1000");
+    for (const auto& m : *ma) {
+        s.methods.push_back(method_by_name(r, m, inline_tables));
+        for (std::size_t k = 0; k + 1 < s.methods.size(); ++k)
+            if (s.methods[k].name == s.methods.back().name)
+                r.fail(m, "method '" + s.methods.back().name + "' is listed twice; expected each method once");
+    }
 
     const toml::node* dt = timing("dt");
     if (!dt) r.fail(top, "missing 'dt'; expected a step size, an array, or {from, to, count}");
@@ -241,6 +260,19 @@ scene load_scene(const std::string& path, bool quick) {
     std::stringstream text;
     text << in.rdbuf();
     return parse_scene(text.str(), path, quick);
+}
+
+const std::vector<double>& sweep_of(const scene& s, const scene_method& m) {
+    if (entry_of(m.kind).adaptive) return m.tolerances.empty() ? s.tolerances : m.tolerances;
+    return m.dt.empty() ? s.dt : m.dt;
+}
+
+double finest_step(const scene& s) {
+    double finest = *std::min_element(s.dt.begin(), s.dt.end());
+    for (const scene_method& m : s.methods)
+        if (!entry_of(m.kind).adaptive && m.kind != method_kind::logh && !m.dt.empty())
+            finest = std::min(finest, *std::min_element(m.dt.begin(), m.dt.end()));
+    return finest;
 }
 
 problem problem_of(const scene& s) {

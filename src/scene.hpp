@@ -26,13 +26,19 @@ struct output_spec {
     std::string directory = ".";       // where `sympl run` writes its files
 };
 
+// A method as a scene lists it: a name, or {name = ..., dt = ..., tolerances = ...}
+// with a sweep of its own (a LogH method's fictitious step differs from dt).
+struct scene_method : method_spec {
+    std::vector<double> dt, tolerances;  // empty: the scene's
+};
+
 struct scene {
     std::string source;  // file path, or "built-in"
     std::string name;
     std::string system;
     std::map<std::string, double> parameters;
     std::vector<double> q0, p0;  // empty: the system's default
-    std::vector<method_spec> methods;
+    std::vector<scene_method> methods;
     std::vector<double> dt;          // one step size or a sweep, largest first
     std::vector<double> tolerances;  // for odeint_dopri5 (default 1e-3 .. 1e-12)
     double t0 = 0;
@@ -48,6 +54,13 @@ struct scene_error : error {
 // `quick`: apply the scene's [quick] table (shorter t_end, fewer steps), if it has one.
 scene parse_scene(const std::string& text, const std::string& source, bool quick = false);
 scene load_scene(const std::string& path, bool quick = false);
+
+// The step sizes (or, for adaptive kinds, tolerances) the method is swept over, largest first.
+const std::vector<double>& sweep_of(const scene& s, const scene_method& m);
+
+// The smallest physical step any fixed-step method of the scene takes (the
+// scene's dt when none does): what a reference must resolve.
+double finest_step(const scene& s);
 
 // The scene's system as a problem, every method checked against it: a method
 // it cannot run is a scene_error before anything runs or is written.

@@ -59,12 +59,12 @@ const std::vector<system_entry>& registry() {
          [](const parameter_values& v) {
              const hamiltonians::harmonic_oscillator h{v.at("mass"), v.at("omega")};
              const S1 x0(V1(1.0), V1(0.0));
-             return model(h, stacked(x0), exact_flow(h, x0));
+             return model<1>(h, stacked(x0), exact_flow(h, x0));
          }},
         {"pendulum", "H = p^2/(2 m l^2) + m g l (1 - cos q); q0 = 1.2, p0 = 0.3",
          {positive("mass", 1, "m"), positive("length", 1, "l"), positive("gravity", 1, "g")}, false,
          [](const parameter_values& v) {
-             return model(hamiltonians::pendulum{v.at("mass"), v.at("length"), v.at("gravity")}, {1.2, 0.3});
+             return model<1>(hamiltonians::pendulum{v.at("mass"), v.at("length"), v.at("gravity")}, {1.2, 0.3});
          }},
         {"kepler",
          "H = |p|^2/2 - mu/|q| (Hairer, Lubich & Wanner, GNI ch. I.2.3), plane orbit from pericentre; exact for mu = 1",
@@ -84,9 +84,10 @@ const std::vector<system_entry>& registry() {
              std::function<std::vector<double>(double)> exact;
              if (mu == 1)
                  exact = [e, scaled](double t) { return scaled(stacked(hamiltonians::kepler::exact_state(e, t))); };
-             return model(hamiltonians::kepler{mu * L * L * L}, scaled(stacked(hamiltonians::kepler::initial_state(e))),
+             return model<2>(hamiltonians::kepler{mu * L * L * L}, scaled(stacked(hamiltonians::kepler::initial_state(e))),
                           exact);
-         }},
+         },
+         true},
         {"kepler_3d", "the Kepler orbit turned into space by the classical angles (mu = 1); exact",
          {{"eccentricity", 0.5, 0, 1, false, true, false, "orbit eccentricity e"},
           any("inclination", 0.3, "rad"), any("node", 0.5, "longitude of the ascending node, rad"),
@@ -94,20 +95,21 @@ const std::vector<system_entry>& registry() {
          true,
          [](const parameter_values& v) {
              const double e = v.at("eccentricity"), i = v.at("inclination"), o = v.at("node"), w = v.at("periapsis");
-             return model(hamiltonians::kepler{}, stacked(hamiltonians::kepler::initial_state_3d(e, i, o, w)),
+             return model<3>(hamiltonians::kepler{}, stacked(hamiltonians::kepler::initial_state_3d(e, i, o, w)),
                           [=](double t) { return stacked(hamiltonians::kepler::exact_state_3d(e, i, o, w, t)); });
-         }},
+         },
+         true},
         {"relativistic_pendulum", "H = m c^2 sqrt(1 + p^2/(m c)^2) + k (1 - cos q): a non-quadratic T; q0 = 1.2, p0 = 0.9",
          {positive("mass", 1, "m"), positive("c", 1, "speed of light"), positive("k", 1, "restoring torque")}, false,
          [](const parameter_values& v) {
-             return model(hamiltonians::relativistic_pendulum{v.at("mass"), v.at("c"), v.at("k")}, {1.2, 0.9});
+             return model<1>(hamiltonians::relativistic_pendulum{v.at("mass"), v.at("c"), v.at("k")}, {1.2, 0.9});
          }},
         {"henon_heiles", "Henon & Heiles 1964; started on the surface of section q1 = 0 at the given energy",
          {{"energy", 1.0 / 6, 0, 1.0 / 6, true, false, false, "H; bounded motion up to 1/6"},
           any("q2", 0.1, "starting q2"), any("p2", 0, "starting p2")},
          false,
          [](const parameter_values& v) {
-             return model(hamiltonians::henon_heiles{},
+             return model<2>(hamiltonians::henon_heiles{},
                           stacked(hamiltonians::henon_heiles::initial_state(v.at("energy"), v.at("q2"), v.at("p2"))));
          }},
         {"fpu_beta", "Fermi, Pasta & Ulam 1955 beta chain, fixed ends; started in its lowest mode, amplitude 1",
@@ -129,13 +131,14 @@ const std::vector<system_entry>& registry() {
          false,
          [](const parameter_values&) {
              const hamiltonians::outer_solar_system h{};
-             return model(h, stacked(h.initial_state()));
-         }},
+             return model<hamiltonians::outer_solar_system::dimension>(h, stacked(h.initial_state()));
+         },
+         true},
         {"two_particle_spring", "two particles joined by a spring (Gould & Tobochnik eq. 3.72); exact",
          {positive("mass", 1, "each particle's mass"), positive("stiffness", 1, "spring constant k")}, true,
          [](const parameter_values& v) {
              const hamiltonians::two_particle_spring h{v.at("mass"), v.at("stiffness")};
-             return model(h, stacked(hamiltonians::two_particle_spring::initial_state()),
+             return model<4>(h, stacked(hamiltonians::two_particle_spring::initial_state()),
                           exact_flow(h, hamiltonians::two_particle_spring::initial_state()));
          }},
         {"morse", "Morse 1929: H = p^2/(2m) + D (1 - exp(-a (q - r0)))^2; q0 = 0.5, p0 = 0.4; exact while bound (E < D)",
@@ -146,11 +149,11 @@ const std::vector<system_entry>& registry() {
              const hamiltonians::morse h{v.at("mass"), v.at("depth"), v.at("width"), v.at("position")};
              const S1 x0(V1(0.5), V1(0.4));
              const bool bound = energy(h, x0) < h.depth;
-             return model(h, stacked(x0), bound ? exact_flow(h, x0) : nullptr);
+             return model<1>(h, stacked(x0), bound ? exact_flow(h, x0) : nullptr);
          }},
         {"double_well", "H = p^2/2 + barrier (q^2 - 1)^2; q0 = 0.5, p0 = 0.3",
          {nonnegative("barrier", 1, "barrier height at q = 0")}, false,
-         [](const parameter_values& v) { return model(hamiltonians::double_well{v.at("barrier")}, {0.5, 0.3}); }},
+         [](const parameter_values& v) { return model<1>(hamiltonians::double_well{v.at("barrier")}, {0.5, 0.3}); }},
         {"toda", "periodic Toda lattice (Toda 1967); q = 0, p_k = cos(2 pi k / n)",
          {count("n", 8, 2, "number of masses")}, false,
          [](const parameter_values& v) {
@@ -168,7 +171,7 @@ const std::vector<system_entry>& registry() {
              const hamiltonians::damped_driven_oscillator o{v.at("mass"), v.at("stiffness"), v.at("damping"),
                                                             v.at("drive_amplitude"), v.at("drive_frequency")};
              const S1 x0(V1(1.0), V1(0.0));
-             return model(o, stacked(x0), exact_flow(o, x0));
+             return model<1>(o, stacked(x0), exact_flow(o, x0));
          }},
     };
     return entries;
@@ -240,6 +243,7 @@ problem make_problem(const std::string& system, const parameter_values& given, c
         throw invalid_argument(what.rfind(where, 0) == 0 ? what : where + ": " + what);
     }
     p.system = system;
+    p.form.negative_potential = entry->negative_potential;
     if (!q0.empty()) {  // the scene's own initial state: the exact solution no longer applies
         if (q0.size() != p.degrees_of_freedom || p0.size() != q0.size())
             throw invalid_argument(where + ": initial q has " + std::to_string(q0.size()) + " and p " +

@@ -38,6 +38,7 @@ struct system_entry {
     std::vector<parameter> parameters;
     bool exact = false;  // an exact solution from the default state (and parameters, see description)
     std::function<problem(const parameter_values&)> build;  // every parameter present and valid
+    bool negative_potential = false;  // V(q) < 0 everywhere (gravitation): LogH applies
 
     const parameter* find(const std::string& parameter_name) const;
 };

@@ -18,10 +18,18 @@ namespace sympl::app {
 
 namespace fs = std::filesystem;
 
-atomic_file::atomic_file(fs::path path)
-    : path_(std::move(path)),
-      temporary_(path_.parent_path() / ("." + path_.filename().string() + ".part-" + std::to_string(::getpid()))),
-      out_(temporary_) {
+namespace {
+// .NAME.part-PID beside NAME: hidden, and unique to this process.
+fs::path temporary_for(const fs::path& path) {
+    std::string name = ".";
+    name += path.filename().string();
+    name += ".part-";
+    name += std::to_string(::getpid());
+    return path.parent_path() / name;
+}
+}  // namespace
+
+atomic_file::atomic_file(fs::path path) : path_(std::move(path)), temporary_(temporary_for(path_)), out_(temporary_) {
     if (!out_) throw error("cannot write " + temporary_.string() + ": " + std::strerror(errno));
 }
 
@@ -59,8 +67,12 @@ std::string csv_field(const std::string& text) {
 
 std::string csv_line(const std::vector<std::string>& fields) {
     std::string out;
-    for (std::size_t i = 0; i < fields.size(); ++i) out += (i ? "," : "") + csv_field(fields[i]);
-    return out + "\n";
+    for (std::size_t i = 0; i < fields.size(); ++i) {
+        if (i) out += ',';
+        out += csv_field(fields[i]);
+    }
+    out += '\n';
+    return out;
 }
 
 std::string markdown_cell(const std::string& text) {

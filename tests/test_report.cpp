@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "read_csv.hpp"
+#include "scratch_directory.hpp"
 #include "report.hpp"
 #include "scene.hpp"
 
@@ -19,7 +20,7 @@ namespace fs = std::filesystem;
 
 
 TEST_CASE("report: one small scene gives the CSV columns and errors that fall with dt") {
-    const fs::path dir = fs::temp_directory_path() / "sympl_test_report";
+    const fs::path dir = scratch_directory("sympl_test_report");
     fs::remove_all(dir);
     const scene s = parse_scene(R"(name = "pendulum"
 system = "pendulum"
@@ -34,13 +35,14 @@ t_end = 10
     const auto rows = read_csv(dir / "work_precision.csv");
     REQUIRE(rows.size() == 1 + 4 * 4 + 2);
     CHECK(rows[0] == std::vector<std::string>{"scene", "method", "kind", "dt", "tolerance", "status", "blowup_step",
-                                              "blowup_time", "steps", "force_evaluations", "seconds", "max_energy_error",
-                                              "final_error", "reference_error", "loop_area_error"});
+                                              "blowup_time", "steps", "force_evaluations", "seconds", "seconds_min",
+                                              "seconds_max", "max_energy_error", "final_error", "reference_error",
+                                              "loop_area_error"});
     std::map<std::string, std::vector<double>> errors;
     for (std::size_t i = 1; i < rows.size(); ++i) {
         REQUIRE(rows[i].size() == rows[0].size());
         CHECK(rows[i][5] == "stable");
-        errors[rows[i][1]].push_back(std::stod(rows[i][12]));
+        errors[rows[i][1]].push_back(std::stod(rows[i][14]));
     }
     for (const auto& [method, e] : errors) {
         CAPTURE(method);
@@ -55,7 +57,7 @@ t_end = 10
 }
 
 TEST_CASE("report: an unstable run is reported with its step and time, never as a number") {
-    const fs::path dir = fs::temp_directory_path() / "sympl_test_unstable";
+    const fs::path dir = scratch_directory("sympl_test_unstable");
     fs::remove_all(dir);
     const scene s = parse_scene(R"(system = "harmonic_oscillator"
 parameters = {omega = 10.0}
@@ -71,13 +73,13 @@ t_end = 100
     CHECK(rows[1][5] == "unstable");  // omega dt = 5 > 2
     CHECK(std::stoul(rows[1][6]) > 0);
     CHECK(rows[1][7] != "");
-    for (int c : {10, 11, 12}) CHECK(rows[1][c] == "");
+    for (int c : {10, 11, 12, 13, 14}) CHECK(rows[1][c] == "");
     CHECK(rows[2][5] == "stable");  // omega dt = 1
     fs::remove_all(dir);
 }
 
 TEST_CASE("report: a method the system cannot run stops everything before anything is written") {
-    const fs::path dir = fs::temp_directory_path() / "sympl_test_unsupported";
+    const fs::path dir = scratch_directory("sympl_test_unsupported");
     fs::remove_all(dir);
     const scene ok = parse_scene("system = \"pendulum\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.1\nt_end = 1\n", "ok.toml");
     const scene bad = parse_scene("system = \"damped_oscillator\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.1\nt_end = 1\n",
@@ -92,7 +94,7 @@ TEST_CASE("report: a method the system cannot run stops everything before anythi
 }
 
 TEST_CASE("report: the stiff and extreme studies (stability map, Kepler e = 0.99, long run, scales)") {
-    const fs::path dir = fs::temp_directory_path() / "sympl_test_studies";
+    const fs::path dir = scratch_directory("sympl_test_studies");
     fs::remove_all(dir);
     const scene s = parse_scene("system = \"harmonic_oscillator\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.1\nt_end = 1\n",
                                 "tiny.toml");

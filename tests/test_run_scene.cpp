@@ -8,13 +8,14 @@
 #include <nlohmann/json.hpp>
 
 #include "read_csv.hpp"
+#include "scratch_directory.hpp"
 #include "run_scene.hpp"
 
 using namespace sympl::app;
 namespace fs = std::filesystem;
 
 TEST_CASE("run: writes the trajectory it is asked for and nothing else") {
-    const fs::path dir = fs::temp_directory_path() / "sympl_test_run";
+    const fs::path dir = scratch_directory("sympl_test_run");
     fs::remove_all(dir);
     const scene s = parse_scene("system = \"kepler\"\nmethods = [\"blanes_moan_s6\"]\ndt = 0.01\nt_end = 1\n"
                                 "[output]\ntrajectory_every = 10\nfinal_state = true\ndirectory = \"" +
@@ -61,7 +62,7 @@ TEST_CASE("run: a method the system cannot run is refused before anything runs")
 }
 
 TEST_CASE("run: names with quotes, commas and line breaks stay inside their JSON strings") {
-    const fs::path dir = fs::temp_directory_path() / "sympl_test_run_names";
+    const fs::path dir = scratch_directory("sympl_test_run_names");
     fs::remove_all(dir);
     const scene s = parse_scene("name = \"a \\\"quoted\\\", name\\nwith a break\"\nsystem = \"harmonic_oscillator\"\n"
                                 "methods = [\"leapfrog_kdk\"]\ndt = 0.1\nt_end = 1\n[output]\ndirectory = \"" + dir.string() + "\"\n",

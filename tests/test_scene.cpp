@@ -76,8 +76,8 @@ TEST_CASE("scene: errors name the file, line and column and what was expected") 
 }
 
 TEST_CASE("scene: the built-in set parses, quick and full") {
-    CHECK(default_scenes(true).size() == 10);
-    CHECK(default_scenes(false).size() == 10);
+    CHECK(default_scenes(true).size() == 11);
+    CHECK(default_scenes(false).size() == 11);
     for (const scene& s : default_scenes(true)) {
         CAPTURE(s.name);
         CHECK(s.dt.size() >= 3);

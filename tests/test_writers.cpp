@@ -10,6 +10,7 @@
 #include <sympl/error.hpp>
 
 #include "read_csv.hpp"
+#include "scratch_directory.hpp"
 #include "writers.hpp"
 
 using namespace sympl::app;
@@ -23,7 +24,7 @@ std::string contents(const fs::path& file) {
 }  // namespace
 
 TEST_CASE("writers: an atomic file appears on commit, and a file not committed leaves the old one") {
-    const fs::path dir = fs::temp_directory_path() / "sympl_test_writers";
+    const fs::path dir = scratch_directory("sympl_test_writers");
     fs::remove_all(dir);
     fs::create_directories(dir);
     {
@@ -46,7 +47,7 @@ TEST_CASE("writers: an atomic file appears on commit, and a file not committed l
 }
 
 TEST_CASE("writers: a commit that cannot complete is an error naming the file, and leaves nothing behind") {
-    const fs::path dir = fs::temp_directory_path() / "sympl_test_writers_fail";
+    const fs::path dir = scratch_directory("sympl_test_writers_fail");
     fs::remove_all(dir);
     fs::create_directories(dir / "taken" / "inside");  // a non-empty directory where the file should go
     {
@@ -65,7 +66,7 @@ TEST_CASE("writers: CSV fields with commas, quotes and line breaks read back as 
     CHECK(csv_field("plain") == "plain");
     CHECK(csv_field("a,b") == "\"a,b\"");
     CHECK(csv_field("say \"hi\"") == "\"say \"\"hi\"\"\"");
-    const fs::path file = fs::temp_directory_path() / "sympl_test_quoted.csv";
+    const fs::path file = scratch_directory("sympl_test_quoted.csv");
     {
         std::ofstream out(file);
         out << csv_line({"name", "value"}) << csv_line({"a, \"b\"\nc", "1"});
@@ -88,9 +89,9 @@ TEST_CASE("writers: names become safe file names and gnuplot strings") {
 
 TEST_CASE("writers: gnuplot starts without a shell: a hostile script path runs nothing") {
     if (!have_gnuplot()) return;
-    const fs::path marker = fs::temp_directory_path() / "sympl_test_gnuplot_marker";
+    const fs::path marker = scratch_directory("sympl_test_gnuplot_marker");
     fs::remove(marker);
-    const fs::path dir = fs::temp_directory_path() / ("sympl_test_o'; touch " + marker.string() + "; '");
+    const fs::path dir = scratch_directory("sympl_test_o'; touch " + marker.string() + "; '");
     fs::create_directories(dir);
     {
         std::ofstream gp(dir / "plot.gp");
