@@ -30,6 +30,13 @@ struct kepler {
         const auto inv_r3 = 1 / (r2 * sqrt(r2));
         f = q * (-mu * inv_r3);
     }
+    // -dV/dq and V from one square root (time_transformation.hpp's LogH needs both at every kick).
+    template <class V> auto force_and_potential(const V& q, V& f) const {
+        using std::sqrt;
+        const auto inv_r = 1 / sqrt(q.squaredNorm());
+        f = q * (-mu * inv_r * inv_r * inv_r);
+        return -mu * inv_r;
+    }
 
     // Pericentre of an orbit with semi-major axis 1 and eccentricity e:
     // q = (1 - e, 0), p = (0, sqrt((1 + e)/(1 - e))) (GNI eq. I.2.12), period 2 pi for mu = 1.

@@ -2,17 +2,22 @@
 #include "method_kinds.hpp"
 
 #include <algorithm>
+#include <charconv>
 
 #include <sympl/catalog.hpp>
+#include <sympl/error.hpp>
+#include <sympl/extrapolation.hpp>
 
 namespace sympl::app {
 
 const std::vector<method_kind_entry>& method_kinds() {
     static const std::vector<method_kind_entry> kinds = {
         {method_kind::table, "table", false, false, needs::separable_hamiltonian,
-         "a splitting table: the catalog's (sympl tables) or a scene's own [[table]]"},
+         "a splitting table: the catalog's (sympl tables) or a scene's own [[table]]; extrapolated(<symmetric table>, k) "
+         "extrapolates it over k runs of 1..k steps (order p + 2(k - 1))"},
         {method_kind::logh, "logh", false, false, needs::negative_potential,
-         "logh(<table>): the table in LogH fictitious time (Mikkola & Tanikawa 1999); dt is the fictitious step"},
+         "logh(<table>): the table in LogH fictitious time (Mikkola & Tanikawa 1999); dt is the fictitious step; "
+         "extrapolated(logh(<symmetric table>), k) as above"},
         {method_kind::classic, "classic", false, false, needs::any, "a classic stepper of Gould & Tobochnik or Sandvik"},
         {method_kind::odeint_rk4, "odeint", false, true, needs::any, "Boost.Odeint runge_kutta4, fixed step"},
         {method_kind::odeint_dopri5, "odeint", true, true, needs::any,
@@ -66,7 +71,41 @@ bool is_classic(const std::string& name) {
 }
 }  // namespace
 
+namespace {
+std::string trimmed(const std::string& s) {
+    const auto first = s.find_first_not_of(" \t"), last = s.find_last_not_of(" \t");
+    return first == std::string::npos ? "" : s.substr(first, last - first + 1);
+}
+
+// extrapolated(<table or logh(<table>)>, <columns>)
+method_spec extrapolated(const std::string& name, const std::map<std::string, table>& inline_tables) {
+    const std::string usage = "; expected extrapolated(<symmetric table or logh(<symmetric table>)>, <columns " +
+                              std::to_string(1) + " to " + std::to_string(max_extrapolation_columns) + ">)";
+    const std::string args = name.substr(13, name.size() - 14);
+    const auto comma = args.rfind(',');
+    if (comma == std::string::npos) throw invalid_argument("method '" + name + "': no column count" + usage);
+    const std::string inner_name = trimmed(args.substr(0, comma)), count = trimmed(args.substr(comma + 1));
+    int columns = 0;
+    const auto [end, error] = std::from_chars(count.data(), count.data() + count.size(), columns);
+    if (error != std::errc{} || end != count.data() + count.size() || columns < 1 || columns > max_extrapolation_columns)
+        throw invalid_argument("method '" + name + "': column count '" + count + "'" + usage);
+    auto inner = resolve_method(inner_name, inline_tables);
+    if (!inner || (inner->kind != method_kind::table && inner->kind != method_kind::logh) || inner->extrapolation_columns)
+        throw invalid_argument("method '" + name + "': '" + inner_name + "' is not a table or logh(<table>)" + usage);
+    if (!inner->coefficients->is_symmetric())
+        throw invalid_argument("method '" + name + "': table '" + inner->coefficients->name() +
+                               "' is not symmetric; extrapolation in powers of dt^2 needs a symmetric table" + usage);
+    if (const int p = inner->coefficients->order(); p < 2 || p % 2 != 0)
+        throw invalid_argument("method '" + name + "': table '" + inner->coefficients->name() + "' claims order " +
+                               std::to_string(p) + "; extrapolation needs its even order (give [[table]] an order)" + usage);
+    inner->name = name;
+    inner->extrapolation_columns = columns;
+    return *inner;
+}
+}  // namespace
+
 std::optional<method_spec> resolve_method(const std::string& name, const std::map<std::string, table>& inline_tables) {
+    if (name.size() > 14 && name.rfind("extrapolated(", 0) == 0 && name.back() == ')') return extrapolated(name, inline_tables);
     if (auto it = inline_tables.find(name); it != inline_tables.end()) return method_spec{name, method_kind::table, it->second};
     if (name.size() > 6 && name.rfind("logh(", 0) == 0 && name.back() == ')') {
         auto inner = resolve_method(name.substr(5, name.size() - 6), inline_tables);

@@ -20,6 +20,7 @@ struct method_spec {
     std::string name;
     method_kind kind = method_kind::table;
     std::optional<table> coefficients;  // for kind == table and logh
+    int extrapolation_columns = 0;      // extrapolated(<table or logh(table)>, k): k > 0
 };
 
 // What a system's equations offer a method.
@@ -78,7 +79,10 @@ std::vector<std::string> method_names_beside_tables();
 
 // The method a scene names: an inline table first, then an Odeint kind, a
 // classic stepper, a catalog table, and logh(<any of the tables>) for the
-// table run in LogH fictitious time; nullopt when the name is none of these.
+// table run in LogH fictitious time, and extrapolated(<table or logh(table)>, k);
+// nullopt when the name is none of these. A malformed extrapolated(...) is an
+// invalid_argument that says what is wrong.
+inline constexpr int max_extrapolation_columns = 12;
 std::optional<method_spec> resolve_method(const std::string& name, const std::map<std::string, table>& inline_tables);
 
 // What `m` needs of a system.

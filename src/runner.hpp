@@ -227,13 +227,16 @@ private:
         };
         switch (m.kind) {
             case method_kind::table:
-                if constexpr (meets<needs::separable_hamiltonian, Sys>())
-                    return with_driver(splitting_stepper<Sys, State>(sys_, *m.coefficients));
-                else
+                if constexpr (meets<needs::separable_hamiltonian, Sys>()) {
+                    splitting_stepper<Sys, State> stepper(sys_, *m.coefficients);
+                    if (m.extrapolation_columns > 0)
+                        return with_driver(extrapolation_stepper(std::move(stepper), m.extrapolation_columns));
+                    return with_driver(std::move(stepper));
+                } else
                     refuse<Sys>(m.name, needs::separable_hamiltonian);
             case method_kind::logh:
                 if constexpr (meets<needs::separable_hamiltonian, Sys>())
-                    return in_logh_time(*m.coefficients, rq.dt, t0, t_end, x, obs, observed);
+                    return in_logh_time(*m.coefficients, m.extrapolation_columns, rq.dt, t0, t_end, x, obs, observed);
                 else
                     refuse<Sys>(m.name, needs::separable_hamiltonian);
             case method_kind::classic:
@@ -261,13 +264,22 @@ private:
                                 step, t);
     }
 
-    // The table in LogH fictitious time (time_transformation.hpp); ds = dt.
+    // The table in LogH fictitious time (time_transformation.hpp), extrapolated
+    // when columns > 0 (extrapolation.hpp); ds = dt.
     template <class Observer>
-    std::pair<std::size_t, std::uint64_t> in_logh_time(const table& t, double ds, double t0, double t_end, State& x,
-                                                       Observer& obs, bool observed) const {
+    std::pair<std::size_t, std::uint64_t> in_logh_time(const table& t, int columns, double ds, double t0, double t_end,
+                                                       State& x, Observer& obs, bool observed) const {
         using Extended = phase_space<double, extended_dimension(Dim)>;
+        splitting_stepper<logh<Sys>, Extended> inner(logh<Sys>{sys_}, t);
+        if (columns > 0)
+            return in_logh_time(extrapolation_stepper(std::move(inner), columns), ds, t0, t_end, x, obs, observed);
+        return in_logh_time(std::move(inner), ds, t0, t_end, x, obs, observed);
+    }
+    template <class Stepper, class Observer>
+    std::pair<std::size_t, std::uint64_t> in_logh_time(Stepper stepper, double ds, double t0, double t_end, State& x,
+                                                       Observer& obs, bool observed) const {
+        using Extended = typename Stepper::state_type;
         Extended X = to_extended(sys_, x, t0);
-        splitting_stepper<logh<Sys>, Extended> stepper(logh<Sys>{sys_}, t);
         run_summary s;
         if (observed) {
             obs(std::as_const(x), t0);

@@ -103,10 +103,15 @@ scene_method method_by_name(const reader& r, const toml::node& n, const std::map
         if (!name_node) r.fail(n, "a method given as a table needs a name");
     }
     const std::string name = r.string(*name_node, "methods");
-    const auto m = resolve_method(name, inline_tables);
+    std::optional<method_spec> m;
+    try {
+        m = resolve_method(name, inline_tables);
+    } catch (const invalid_argument& e) {
+        r.fail(*name_node, e.what());
+    }
     if (!m)
         r.fail(*name_node, "unknown method '" + name + "'; expected a catalog name (sympl tables), an inline [[table]], "
-                           "logh(<table>), or one of: " + join(method_names_beside_tables()));
+                           "logh(<table>), extrapolated(<table>, k), or one of: " + join(method_names_beside_tables()));
     scene_method sm{*m, {}, {}};
     if (t && t->get("dt")) sm.dt = r.sweep(*t->get("dt"), "dt");
     if (t && t->get("tolerances")) sm.tolerances = r.sweep(*t->get("tolerances"), "tolerances");

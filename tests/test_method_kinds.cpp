@@ -39,3 +39,31 @@ TEST_CASE("method kinds: what each needs, and the reason when a system lacks it"
         CHECK(why_not(m(any), damped).empty());
     }
 }
+
+TEST_CASE("method kinds: extrapolated(<table or logh(table)>, k), and what is wrong with a malformed one") {
+    const auto plain = resolve_method("extrapolated(leapfrog_kdk, 4)", {});
+    REQUIRE(plain);
+    CHECK(plain->kind == method_kind::table);
+    CHECK(plain->extrapolation_columns == 4);
+    const auto logh = resolve_method("extrapolated( logh(leapfrog_dkd) , 6 )", {});
+    REQUIRE(logh);
+    CHECK(logh->kind == method_kind::logh);
+    CHECK(logh->extrapolation_columns == 6);
+    CHECK(logh->coefficients->name() == "leapfrog_dkd");
+    const auto fails = [](const char* name, const char* why) {
+        CAPTURE(name);
+        CHECK_THROWS_WITH_AS(resolve_method(name, {}), doctest::Contains(why), sympl::invalid_argument);
+    };
+    fails("extrapolated(ruth_3, 3)", "'ruth_3' is not symmetric");
+    fails("extrapolated(leapfrog_kdk, 0)", "column count '0'");
+    fails("extrapolated(leapfrog_kdk, 13)", "column count '13'");
+    fails("extrapolated(leapfrog_kdk, 1e300)", "column count '1e300'");
+    fails("extrapolated(leapfrog_kdk, nan)", "column count 'nan'");
+    fails("extrapolated(leapfrog_kdk)", "no column count");
+    fails("extrapolated(rk4, 3)", "'rk4' is not a table or logh(<table>)");
+    fails("extrapolated(extrapolated(leapfrog_kdk, 2), 3)", "is not a table or logh(<table>)");
+    std::map<std::string, sympl::table> mine{
+        {"mine", sympl::table("mine", {0.5L, 0.5L}, {1.0L, 0.0L})}};  // leapfrog without a claimed order
+    CHECK_THROWS_WITH_AS(resolve_method("extrapolated(mine, 3)", mine), doctest::Contains("claims order 0"),
+                         sympl::invalid_argument);
+}

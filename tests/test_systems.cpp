@@ -20,13 +20,16 @@ std::vector<method_spec> every_method() {
     all.push_back(*resolve_method("blanes_moan_s6", {}));
     all.push_back(*resolve_method("mine", {{"mine", sympl::method("leapfrog_kdk")}}));
     all.push_back(*resolve_method("logh(leapfrog_dkd)", {}));
+    all.push_back(*resolve_method("extrapolated(leapfrog_kdk, 3)", {}));
+    all.push_back(*resolve_method("extrapolated(logh(leapfrog_dkd), 3)", {}));
     return all;
 }
 }  // namespace
 
 TEST_CASE("systems: every system runs every method the registry says it can, and refuses every other") {
     const auto methods = every_method();
-    CHECK(methods.size() == 17);  // 10 classic names, 4 Odeint kinds, a catalog and an inline table, a logh
+    // 10 classic names, 4 Odeint kinds, a catalog and an inline table, a logh, two extrapolated
+    CHECK(methods.size() == 19);
     for (const system_entry& entry : systems()) {
         const problem p = make_problem(entry.name, {}, {}, {}, "test");
         for (const method_spec& m : methods) {

@@ -8,6 +8,7 @@
 #include "convergence.hpp"
 #include "dual.hpp"
 #include "equations_of_motion.hpp"
+#include "extrapolation.hpp"
 #include "error.hpp"
 #include "hamiltonian.hpp"
 #include "integrate.hpp"

@@ -73,21 +73,21 @@ struct logh {
     // (dT/dp, 1) / (T + p_t)
     template <class Vec>
     void velocity(const Vec& P, Vec& v) const {
-        const Eigen::Index n = P.size() - 1;
-        auto& w = workspace<Vec>();
-        w.p = P.head(n);
+        scratch<Vec> local;  // empty (no allocation) for dynamic vectors
+        scratch<Vec>& w = workspace(local);
+        w.p = inner(P);
         sympl::velocity(system, w.p, w.g);
         const auto scale = 1 / positive_kinetic(P, w.p);
-        v.head(n) = scale * w.g;
-        v[n] = scale;
+        inner(v) = scale * w.g;
+        v[v.size() - 1] = scale;
     }
     // (-dV/dq, 0) / (-V)
     template <class Vec>
     void force(const Vec& Q, Vec& f) const {
         using S = scalar_of<Vec>;
-        const Eigen::Index n = Q.size() - 1;
-        auto& w = workspace<Vec>();
-        w.q = Q.head(n);
+        scratch<Vec> local;  // empty (no allocation) for dynamic vectors
+        scratch<Vec>& w = workspace(local);
+        w.q = inner(Q);
         S v;
         if constexpr (has_force_and_potential<H, inner_vector<Vec>>) {
             v = S(system.force_and_potential(w.q, w.g));
@@ -95,8 +95,9 @@ struct logh {
             sympl::force(system, w.q, w.g);
             v = S(system.potential(w.q));
         }
-        f.head(n) = w.g / negative_potential(Q, v);
-        f[n] = S(0);
+        const S scale = 1 / negative_potential(Q, v);
+        inner(f) = scale * w.g;
+        f[f.size() - 1] = S(0);
     }
 
 private:
@@ -104,11 +105,23 @@ private:
     struct scratch {
         inner_vector<Vec> q, p, g;
     };
-    // One workspace per thread and vector type: no allocation once sized.
+    // The physical part (q or p) of an extended vector, fixed-size when it is.
     template <class Vec>
-    static scratch<Vec>& workspace() {
-        thread_local scratch<Vec> w;
-        return w;
+    static auto inner(Vec& x) {
+        if constexpr (Vec::RowsAtCompileTime != Eigen::Dynamic) return x.template head<Vec::RowsAtCompileTime - 1>();
+        else return x.head(x.size() - 1);
+    }
+    // Fixed-size vectors use the caller's local workspace (registers, no
+    // aliasing with the state); dynamic ones one per thread and vector type,
+    // so no step allocates once it is sized.
+    template <class Vec>
+    static scratch<Vec>& workspace(scratch<Vec>& local) {
+        if constexpr (Vec::RowsAtCompileTime != Eigen::Dynamic) {
+            return local;
+        } else {
+            thread_local scratch<Vec> shared;
+            return shared;
+        }
     }
     // -V, checked: the transformation needs V < 0.
     template <class Vec, class S>
@@ -205,16 +218,35 @@ run_summary integrate_to_time(Stepper& stepper, phase_space<S, D>& X, S t_end, S
             check(X, before, ds);
             carried = true;
             if (physical_time(X) > target) {
-                // Overshot: find h in (0, ds) with t(h) = target (t(h) is smooth and increasing).
-                const S tb = physical_time(before), tolerance = 2 * std::numeric_limits<S>::epsilon() * abs(target);
-                S h0 = 0, f0 = tb - target, h1 = ds, f1 = physical_time(X) - target;
-                for (int i = 0; i < 60 && abs(f1) > tolerance; ++i) {
-                    const S h = h1 - f1 * (h1 - h0) / (f1 - f0);
-                    if (!(h > S(0)) || !(h < S(2) * ds) || h == h1) break;
+                // Overshot: find h in (0, ds) with t(h) = target. t(h) - target is
+                // negative at 0 and positive at ds; the Illinois variant of regula
+                // falsi keeps that bracket and converges superlinearly (Dowell &
+                // Jarratt 1971), where a plain secant can leave the bracket on a
+                // long, curved step. An extrapolated step magnifies the rounding of
+                // its inner results (extrapolation.hpp), and with it the noise in t(h).
+                S slack = 1;
+                if constexpr (requires { stepper.amplification(); }) slack = S(stepper.amplification());
+                const S tb = physical_time(before),
+                        tolerance = 2 * slack * std::numeric_limits<S>::epsilon() * abs(target);
+                S a = 0, fa = tb - target, b = ds, fb = physical_time(X) - target, f1 = fb;
+                int kept = 0;  // which end stayed twice in a row (-1 a, +1 b)
+                for (int i = 0; i < 100 && abs(f1) > tolerance; ++i) {
+                    S h = b - fb * (b - a) / (fb - fa);
+                    if (!(h > a && h < b)) h = a + (b - a) / 2;
+                    if (!(h > a && h < b)) break;  // the bracket is down to adjacent numbers
                     X = before;
                     step(X, h, false);
                     check(X, before, h);
-                    h0 = h1, f0 = f1, h1 = h, f1 = physical_time(X) - target;
+                    f1 = physical_time(X) - target;
+                    if (f1 < S(0)) {
+                        a = h, fa = f1;
+                        if (kept == 1) fb /= 2;
+                        kept = 1;
+                    } else {
+                        b = h, fb = f1;
+                        if (kept == -1) fa /= 2;
+                        kept = -1;
+                    }
                 }
                 if (abs(f1) > 4 * tolerance)
                     throw integration_error("integrate_to_time: could not land on t = " + detail::number(target) +
