@@ -73,16 +73,19 @@ public:
         for (int j = 1; j <= columns_; ++j) {
             trial_ = x;
             inner_.steps(trial_, H / scalar(j), static_cast<std::size_t>(j));
+            // Combined as increments (sum c_j = 1): their rounding is relative to
+            // the step's change, not to the state.
             const scalar c = weights_[static_cast<std::size_t>(j - 1)];
             if (j == 1) {
-                sum_.q = c * trial_.q;
-                sum_.p = c * trial_.p;
+                sum_.q = c * (trial_.q - x.q);
+                sum_.p = c * (trial_.p - x.p);
             } else {
-                sum_.q += c * trial_.q;
-                sum_.p += c * trial_.p;
+                sum_.q += c * (trial_.q - x.q);
+                sum_.p += c * (trial_.p - x.p);
             }
         }
-        x = sum_;
+        x.q += sum_.q;
+        x.p += sum_.p;
     }
     void steps(state_type& x, scalar H, std::size_t n) {
         for (std::size_t i = 0; i < n; ++i) step(x, H);
