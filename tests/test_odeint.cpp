@@ -7,6 +7,8 @@
 
 #include <sympl/sympl.hpp>
 #include <sympl/odeint.hpp>
+#include <sympl/extrapolation.hpp>
+#include <sympl/time_transformation.hpp>
 #include <sympl/hamiltonians/kepler.hpp>
 #include <sympl/hamiltonians/pendulum.hpp>
 
@@ -95,4 +97,27 @@ TEST_CASE("odeint: state conversions check their sizes") {
     CHECK_THROWS_WITH_AS(from_stacked<K>(std::vector<double>(3)), doctest::Contains("3 numbers"), invalid_argument);
     CHECK_THROWS_WITH_AS(from_stacked<K>(std::vector<double>(6)), doctest::Contains("expected q and p stacked, 4 numbers"),
                          invalid_argument);
+}
+
+TEST_CASE("odeint: LogH and extrapolated steppers run in Odeint's drivers, in fictitious time") {
+    using KX = phase_space<double, 3>;
+    const hamiltonians::kepler h{};
+    const KX X0 = to_extended(h, hamiltonians::kepler::initial_state(0.9));
+    const double ds = 2 * M_PI / 256;  // Odeint's "time" is the fictitious time s
+    auto logh_leapfrog = splitting_stepper<logh<hamiltonians::kepler>, KX>({h}, method("blanes_moan_s6"));
+    auto bridged = make_odeint_stepper(logh_leapfrog);
+    KX X = X0, Y = X0;
+    odeint::integrate_n_steps(bridged, odeint_stepper_system{}, X, 0.0, ds, 256);
+    for (int i = 0; i < 256; ++i) logh_leapfrog.step(Y, ds);
+    CHECK(max_difference(X, Y) == 0);
+    // One fictitious period 2 pi / a is one physical period: back at pericentre, t = 2 pi.
+    CHECK(physical_time(X) == doctest::Approx(2 * M_PI).epsilon(1e-8));
+    CHECK(max_difference(physical_state(X), hamiltonians::kepler::initial_state(0.9)) < 1e-6);
+
+    odeint_stepper extrapolated(extrapolation_stepper(splitting_stepper<logh<hamiltonians::kepler>, KX>(
+                                                          {h}, method("leapfrog_dkd")), 4), 8);
+    KX Z = X0;
+    odeint::integrate_n_steps(extrapolated, odeint_stepper_system{}, Z, 0.0, 2 * M_PI / 32, 32);
+    CHECK(physical_time(Z) == doctest::Approx(2 * M_PI).epsilon(1e-8));
+    CHECK(max_difference(physical_state(Z), hamiltonians::kepler::initial_state(0.9)) < 1e-6);
 }

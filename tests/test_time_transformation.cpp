@@ -130,3 +130,26 @@ TEST_CASE("logh: a potential that is not negative, or a bad step, is an error na
     Z.p[2] = -10;  // p_t far below -T
     CHECK_THROWS_WITH_AS(integrate_to_time(t, Z, 1.0, 0.1), doctest::Contains("T(p) + p_t = "), invalid_argument);
 }
+
+TEST_CASE("logh: a dynamic-size state follows the fixed-size one to rounding, plain and compensated") {
+    using KD = phase_space<double, Eigen::Dynamic>;
+    const hamiltonians::kepler h{};
+    const K x0 = hamiltonians::kepler::initial_state(0.9);
+    for (const bool compensated : {false, true}) {
+        CAPTURE(compensated);
+        KX X = to_extended(h, x0);
+        KD Y = to_extended(h, KD(Eigen::VectorXd(x0.q), Eigen::VectorXd(x0.p)));
+        REQUIRE(Y.size() == 3);
+        splitting_stepper<logh<hamiltonians::kepler>, KX> fixed({h}, method("blanes_moan_s6"), stepper_options{compensated});
+        splitting_stepper<logh<hamiltonians::kepler>, KD> dynamic({h}, method("blanes_moan_s6"), stepper_options{compensated});
+        const auto rx = integrate_to_time(fixed, X, 4 * pi, 2 * pi / 200);
+        const auto ry = integrate_to_time(dynamic, Y, 4 * pi, 2 * pi / 200);
+        CHECK(rx.steps == ry.steps);
+        CHECK(physical_time(Y) == 4 * pi);
+        // The same arithmetic up to the order of operations: a few hundred steps of rounding.
+        for (Eigen::Index i = 0; i < 2; ++i) {
+            CHECK(std::fabs(X.q[i] - Y.q[i]) < 1e-11);
+            CHECK(std::fabs(X.p[i] - Y.p[i]) < 1e-11);
+        }
+    }
+}
