@@ -83,5 +83,8 @@ TEST_CASE("bad arguments: non-positive or non-finite dt, t_end before t0, non-fi
     CHECK_THROWS_WITH_AS(integrate_until(s, x, 2.0, 1.0, 0.1), doctest::Contains("t_end = 1"), invalid_argument);
     State bad(V1(NAN), V1(0.0));
     CHECK_THROWS_AS(integrate_steps(s, bad, 0.0, 0.1, 10), invalid_argument);
+    // A step count beyond any integer is refused with the figures, before it is converted.
+    CHECK_THROWS_WITH_AS(integrate_until(s, x, 0.0, 1e300, 1e-320), doctest::Contains("steps; expected at most 1e18"),
+                         invalid_argument);
     CHECK(x.q[0] == 1.0);  // nothing computed was lost or changed
 }

@@ -178,6 +178,12 @@ run_summary integrate_until(Stepper& stepper, typename Stepper::state_type& x, t
         throw invalid_argument("integrate_until: t_end = " + detail::number(t_end) + " with t0 = " + detail::number(t0) +
                                "; expected finite times with t_end > t0");
     const T span = t_end - t0;
+    // The step count must fit before it is converted (a float beyond the
+    // integer range is undefined behaviour).
+    if (!(span / dt < T(1e18)))
+        throw invalid_argument("integrate_until: t_end - t0 = " + detail::number(span) + " in steps of dt = " +
+                               detail::number(dt) + " is " + detail::number(span / dt) +
+                               " steps; expected at most 1e18");
     auto n = static_cast<std::size_t>(floor(span / dt));
     T rest = span - T(n) * dt;
     // A remainder at roundoff level means dt divides the span.
