@@ -69,9 +69,7 @@ namespace {
 bool is_classic(const std::string& name) {
     return std::apply([&](const auto&... m) { return ((name == m.name) || ...); }, classic_methods);
 }
-}  // namespace
 
-namespace {
 std::string trimmed(const std::string& s) {
     const auto first = s.find_first_not_of(" \t"), last = s.find_last_not_of(" \t");
     return first == std::string::npos ? "" : s.substr(first, last - first + 1);
@@ -79,8 +77,8 @@ std::string trimmed(const std::string& s) {
 
 // extrapolated(<table or logh(<table>)>, <columns>)
 method_spec extrapolated(const std::string& name, const std::map<std::string, table>& inline_tables) {
-    const std::string usage = "; expected extrapolated(<symmetric table or logh(<symmetric table>)>, <columns " +
-                              std::to_string(1) + " to " + std::to_string(max_extrapolation_columns) + ">)";
+    const std::string usage = "; expected extrapolated(<symmetric table or logh(<symmetric table>)>, <columns 1 to " +
+                              std::to_string(max_extrapolation_columns) + ">)";
     const std::string args = name.substr(13, name.size() - 14);
     const auto comma = args.rfind(',');
     if (comma == std::string::npos) throw invalid_argument("method '" + name + "': no column count" + usage);
@@ -92,12 +90,11 @@ method_spec extrapolated(const std::string& name, const std::map<std::string, ta
     auto inner = resolve_method(inner_name, inline_tables);
     if (!inner || (inner->kind != method_kind::table && inner->kind != method_kind::logh) || inner->extrapolation_columns)
         throw invalid_argument("method '" + name + "': '" + inner_name + "' is not a table or logh(<table>)" + usage);
-    if (!inner->coefficients->is_symmetric())
-        throw invalid_argument("method '" + name + "': table '" + inner->coefficients->name() +
-                               "' is not symmetric; extrapolation in powers of dt^2 needs a symmetric table" + usage);
-    if (const int p = inner->coefficients->order(); p < 2 || p % 2 != 0)
-        throw invalid_argument("method '" + name + "': table '" + inner->coefficients->name() + "' claims order " +
-                               std::to_string(p) + "; extrapolation needs its even order (give [[table]] an order)" + usage);
+    try {
+        extrapolation_order(*inner->coefficients);
+    } catch (const invalid_argument& e) {
+        throw invalid_argument("method '" + name + "': " + e.what() + usage);
+    }
     inner->name = name;
     inner->extrapolation_columns = columns;
     return *inner;

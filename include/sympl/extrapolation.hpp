@@ -31,8 +31,21 @@
 
 #include "error.hpp"
 #include "phase_space.hpp"
+#include "table.hpp"
 
 namespace sympl {
+
+// The order p of a table to be extrapolated, checked: extrapolation in powers
+// of h^2 needs a symmetric table and its even claimed order.
+inline int extrapolation_order(const table& t) {
+    if (!t.is_symmetric())
+        throw invalid_argument("table '" + t.name() +
+                               "' is not symmetric; extrapolation in powers of h^2 needs a symmetric method");
+    if (t.order() < 2 || t.order() % 2 != 0)
+        throw invalid_argument("table '" + t.name() + "' claims order " + std::to_string(t.order()) +
+                               "; extrapolation needs its even order (>= 2)");
+    return t.order();
+}
 
 // What extrapolation needs of the inner method: n steps of one size from a state.
 template <class S>
@@ -56,10 +69,12 @@ public:
             throw invalid_argument("extrapolation_stepper: columns = " + std::to_string(columns) + "; expected 1 to " +
                                    std::to_string(max_columns));
         if constexpr (requires { inner_.method().is_symmetric(); }) {
-            if (!inner_.method().is_symmetric())
-                throw invalid_argument("extrapolation_stepper: table '" + inner_.method().name() +
-                                       "' is not symmetric; extrapolation in powers of h^2 needs a symmetric method");
-            if (inner_order_ == 0) inner_order_ = inner_.method().order();
+            try {
+                const int claimed = extrapolation_order(inner_.method());
+                if (inner_order_ == 0) inner_order_ = claimed;
+            } catch (const invalid_argument& e) {
+                throw invalid_argument(std::string("extrapolation_stepper: ") + e.what());
+            }
         }
         if (inner_order_ < 2 || inner_order_ % 2 != 0)
             throw invalid_argument("extrapolation_stepper: inner order " + std::to_string(inner_order_) +
