@@ -127,8 +127,8 @@ private:
     template <class Vec, class S>
     static S negative_potential(const Vec& Q, S v) {
         if (!(v < S(0)))
-            throw invalid_argument("logh: V(q) = " + detail::number_text(static_cast<long double>(primal(v))) +
-                                   " at t = " + detail::number_text(static_cast<long double>(primal(Q[Q.size() - 1]))) +
+            throw invalid_argument("logh: V(q) = " + detail::number(v) +
+                                   " at t = " + detail::number(Q[Q.size() - 1]) +
                                    "; the logarithmic time transformation needs V(q) < 0 along the orbit");
         return -v;
     }
@@ -138,7 +138,7 @@ private:
         using S = scalar_of<Vec>;
         const S w = S(system.kinetic(p)) + P[P.size() - 1];
         if (!(w > S(0)))
-            throw invalid_argument("logh: T(p) + p_t = " + detail::number_text(static_cast<long double>(primal(w))) +
+            throw invalid_argument("logh: T(p) + p_t = " + detail::number(w) +
                                    "; the logarithmic time transformation needs T(p) - H0 > 0 along the orbit");
         return w;
     }
