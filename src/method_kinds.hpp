@@ -47,6 +47,12 @@ struct method_kind_entry {
 const std::vector<method_kind_entry>& method_kinds();
 const method_kind_entry& entry_of(method_kind kind);
 
+// Whether the method's dt is a step in physical time (not a tolerance, and not
+// LogH's fictitious step).
+inline bool steps_in_physical_time(const method_spec& m) {
+    return !entry_of(m.kind).adaptive && m.kind != method_kind::logh;
+}
+
 // A classic stepper of classic_steppers.hpp under its scene name.
 template <template <class, class> class Stepper, needs Needs>
 struct classic_method {

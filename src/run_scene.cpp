@@ -73,7 +73,7 @@ void run_scene(const scene& s, bool json, std::ostream& out) {
     // The reference resolves the steps this run takes (the first of each sweep).
     double finest = s.dt.front();
     for (const scene_method& m : s.methods)
-        if (!entry_of(m.kind).adaptive && m.kind != method_kind::logh) finest = std::min(finest, sweep_of(s, m).front());
+        if (steps_in_physical_time(m)) finest = std::min(finest, sweep_of(s, m).front());
     const reference_state ref = make_reference(s, p, finest);
     const fs::path dir = s.output.directory;
     fs::create_directories(dir);

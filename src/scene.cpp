@@ -275,7 +275,7 @@ const std::vector<double>& sweep_of(const scene& s, const scene_method& m) {
 double finest_step(const scene& s) {
     double finest = *std::min_element(s.dt.begin(), s.dt.end());
     for (const scene_method& m : s.methods)
-        if (!entry_of(m.kind).adaptive && m.kind != method_kind::logh && !m.dt.empty())
+        if (steps_in_physical_time(m) && !m.dt.empty())
             finest = std::min(finest, *std::min_element(m.dt.begin(), m.dt.end()));
     return finest;
 }
