@@ -11,6 +11,7 @@
 namespace sympl::hamiltonians {
 
 struct henon_heiles {
+    static constexpr int dimension = 2;  // q = (x, y)
     template <class V> auto kinetic(const V& p) const { return p.squaredNorm() / 2; }
     template <class V> auto potential(const V& q) const {
         return (q[0] * q[0] + q[1] * q[1]) / 2 + q[0] * q[0] * q[1] - q[1] * q[1] * q[1] / 3;

@@ -11,6 +11,7 @@
 namespace sympl::hamiltonians {
 
 struct two_particle_spring {
+    static constexpr int dimension = 4;  // q = (x1, y1, x2, y2)
     double mass = 1.0;       // each particle (Gould & Tobochnik take unit mass)
     double stiffness = 1.0;  // k
 

@@ -7,7 +7,10 @@ foreach(step
     "${CMAKE_COMMAND};--install;${WORK}/sympl"
     "${CMAKE_COMMAND};-S;${SOURCE}/examples;-B;${WORK}/examples;-DCMAKE_PREFIX_PATH=${prefix}"
     "${CMAKE_COMMAND};--build;${WORK}/examples;-j2"
-    "${WORK}/examples/quickstart")
+    "${WORK}/examples/quickstart"
+    "${CMAKE_COMMAND};-S;${SOURCE}/tests/consumer;-B;${WORK}/defaults;-DCMAKE_PREFIX_PATH=${prefix}"
+    "${CMAKE_COMMAND};--build;${WORK}/defaults;-j2"
+    "${WORK}/defaults/api_tour")
   execute_process(COMMAND ${step} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "step failed (${rc}): ${step}\n${out}\n${err}")

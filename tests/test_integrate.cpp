@@ -86,5 +86,6 @@ TEST_CASE("bad arguments: non-positive or non-finite dt, t_end before t0, non-fi
     // A step count beyond any integer is refused with the figures, before it is converted.
     CHECK_THROWS_WITH_AS(integrate_until(s, x, 0.0, 1e300, 1e-320), doctest::Contains("steps; expected at most 1e18"),
                          invalid_argument);
+    CHECK_THROWS_WITH_AS(integrate_steps(s, x, NAN, 0.1, 10), doctest::Contains("t0 = nan"), invalid_argument);
     CHECK(x.q[0] == 1.0);  // nothing computed was lost or changed
 }

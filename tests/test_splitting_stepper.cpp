@@ -6,6 +6,7 @@
 #include <sympl/sympl.hpp>
 #include <sympl/hamiltonians/fpu_beta.hpp>
 #include <sympl/hamiltonians/harmonic_oscillator.hpp>
+#include <sympl/hamiltonians/henon_heiles.hpp>
 #include <sympl/hamiltonians/kepler.hpp>
 #include <sympl/hamiltonians/pendulum.hpp>
 
@@ -106,4 +107,42 @@ TEST_CASE("splitting_stepper: the FPU-beta chain conserves energy with a 4th-ord
         worst = std::max(worst, std::fabs(energy(h, x) - e0) / e0);
     }
     CHECK(worst < 1e-6);
+}
+
+namespace {
+// A user's Hamiltonian whose force returns three components whatever the state.
+struct wrong_size_force {
+    template <class V> auto kinetic(const V& p) const { return p.squaredNorm() / 2; }
+    template <class V> auto potential(const V& q) const { return q.squaredNorm() / 2; }
+    template <class V> void force(const V& q, V& f) const { f = -V::Constant(3, q[0]); }
+};
+}  // namespace
+
+TEST_CASE("splitting_stepper: sizes and finiteness are checked before the state is touched") {
+    using Dynamic = phase_space<double>;
+    // Henon-Heiles declares dimension 2: a 1-D state is refused before its force reads q[1].
+    splitting_stepper<hamiltonians::henon_heiles, Dynamic> hh({}, method("leapfrog_kdk"));
+    Dynamic one(Eigen::VectorXd::Constant(1, 0.1), Eigen::VectorXd::Constant(1, 0.2));
+    CHECK_THROWS_WITH_AS(hh.steps(one, 0.1, 10),
+                         doctest::Contains("state has dimension 1 but the Hamiltonian is written for dimension 2"),
+                         invalid_argument);
+    CHECK(one.q[0] == 0.1);
+    // A force of the wrong size is caught before the first step.
+    splitting_stepper<wrong_size_force, Dynamic> bad({}, method("forest_ruth_4"));
+    Dynamic two(Eigen::VectorXd::Constant(2, 0.5), Eigen::VectorXd::Constant(2, 0.0));
+    CHECK_THROWS_WITH_AS(bad.steps(two, 0.1, 10),
+                         doctest::Contains("force returned 3 components for a state of dimension 2"), invalid_argument);
+    CHECK_THROWS_AS(bad.step(two, 0.1), invalid_argument);  // and again on the next call
+    CHECK(two.q[0] == 0.5);
+    // A non-finite state is refused by step() and steps(), whatever the size.
+    splitting_stepper<hamiltonians::harmonic_oscillator, phase_space<double, 1>> ho({}, method("leapfrog_kdk"));
+    phase_space<double, 1> nan_state(Eigen::Matrix<double, 1, 1>(NAN), Eigen::Matrix<double, 1, 1>(0.0));
+    CHECK_THROWS_WITH_AS(ho.step(nan_state, 0.1), doctest::Contains("not finite"), invalid_argument);
+    Dynamic inf_p(Eigen::VectorXd::Constant(2, 0.0), Eigen::VectorXd::Constant(2, INFINITY));
+    splitting_stepper<hamiltonians::harmonic_oscillator, Dynamic> hod({}, method("leapfrog_kdk"));
+    CHECK_THROWS_WITH_AS(hod.steps(inf_p, 0.1, 3), doctest::Contains("component 0"), invalid_argument);
+    // The checks cost no force evaluation that is counted.
+    Dynamic fine(Eigen::VectorXd::Constant(2, 0.1), Eigen::VectorXd::Constant(2, 0.0));
+    hh.steps(fine, 0.1, 10);
+    CHECK(hh.force_evaluations() == 11);
 }

@@ -97,6 +97,15 @@ TEST_CASE("table: triple jump and Suzuki composition raise the order by two (mea
     // The triple jump of leapfrog is Forest-Ruth up to the kick/drift reading.
     CHECK(triple_jump(method("leapfrog_dkd")).stages() == method("forest_ruth_4").stages());
     CHECK_THROWS_AS(triple_jump(method("euler_cromer")), invalid_argument);
+    // Euler-Cromer then its adjoint over half steps is the leapfrog: symmetric,
+    // so order 2 (not the parts' 1), and the triple jump raises it to 4.
+    const table ec2 = concatenate(method("euler_cromer"), method("euler_cromer_dk"));
+    CHECK(ec2.is_symmetric());
+    CHECK(ec2.order() == 2);
+    CHECK(std::fabs(measure_order(ec2, order_problem::pendulum).order - 2) <= 0.15);
+    CHECK(std::fabs(measure_order(triple_jump(ec2), order_problem::nonquadratic_kinetic).order - 4) <= 0.15);
+    // An unsymmetric concatenation keeps the smaller order.
+    CHECK(concatenate(method("euler_cromer"), method("euler_cromer_dk"), 0.3L).order() == 1);
     CHECK_THROWS_AS(compose(lf, {0.5L, 0.4L}), invalid_argument);
 }
 

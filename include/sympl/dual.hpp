@@ -34,6 +34,18 @@ struct dual {
         return d;
     }
 
+    // A dual never becomes a plain number silently: that would drop its
+    // derivatives. An explicit std::sqrt(x), std::exp(x), ... on a dual arrives
+    // here and stops the build with the fix.
+    operator T() const
+        requires std::is_floating_point_v<T>
+    {
+        static_assert(sizeof(T) == 0,
+                      "sympl::dual: a std:: math function was called on a dual number (e.g. std::sqrt(x)), which would "
+                      "drop its derivatives; write `using std::sqrt; sqrt(x)` so that the dual overload is found");
+        return value;
+    }
+
     dual& operator+=(const dual& o) {
         value += o.value;
         for (int i = 0; i < N; ++i) grad[i] += o.grad[i];
@@ -173,9 +185,81 @@ template <class T, int N> dual<T, N> atan(const dual<T, N>& a) {
     using std::atan;
     return chain(a, atan(a.value), T(1) / (T(1) + a.value * a.value));
 }
+template <class T, int N> dual<T, N> asin(const dual<T, N>& a) {
+    using std::asin; using std::sqrt;
+    return chain(a, asin(a.value), T(1) / sqrt(T(1) - a.value * a.value));
+}
+template <class T, int N> dual<T, N> acos(const dual<T, N>& a) {
+    using std::acos; using std::sqrt;
+    return chain(a, acos(a.value), T(-1) / sqrt(T(1) - a.value * a.value));
+}
+template <class T, int N> dual<T, N> asinh(const dual<T, N>& a) {
+    using std::asinh; using std::sqrt;
+    return chain(a, asinh(a.value), T(1) / sqrt(a.value * a.value + T(1)));
+}
+template <class T, int N> dual<T, N> acosh(const dual<T, N>& a) {
+    using std::acosh; using std::sqrt;
+    return chain(a, acosh(a.value), T(1) / sqrt(a.value * a.value - T(1)));
+}
+template <class T, int N> dual<T, N> atanh(const dual<T, N>& a) {
+    using std::atanh;
+    return chain(a, atanh(a.value), T(1) / (T(1) - a.value * a.value));
+}
+template <class T, int N> dual<T, N> cbrt(const dual<T, N>& a) {
+    using std::cbrt;
+    const T c = cbrt(a.value);
+    return chain(a, c, T(1) / (T(3) * c * c));
+}
+template <class T, int N> dual<T, N> log1p(const dual<T, N>& a) {
+    using std::log1p;
+    return chain(a, log1p(a.value), T(1) / (T(1) + a.value));
+}
+template <class T, int N> dual<T, N> expm1(const dual<T, N>& a) {
+    using std::expm1; using std::exp;
+    return chain(a, expm1(a.value), exp(a.value));
+}
+template <class T, int N> dual<T, N> log2(const dual<T, N>& a) {
+    using std::log2; using std::log;
+    return chain(a, log2(a.value), T(1) / (a.value * log(T(2))));
+}
+template <class T, int N> dual<T, N> log10(const dual<T, N>& a) {
+    using std::log10; using std::log;
+    return chain(a, log10(a.value), T(1) / (a.value * log(T(10))));
+}
+template <class T, int N> dual<T, N> exp2(const dual<T, N>& a) {
+    using std::exp2; using std::log;
+    const T e = exp2(a.value);
+    return chain(a, e, e * log(T(2)));
+}
+// atan2(y, x) and hypot(x, y) in every mix of dual and plain arguments.
+template <class T, int N> dual<T, N> atan2(const dual<T, N>& y, const dual<T, N>& x) {
+    using std::atan2;
+    const T r2 = x.value * x.value + y.value * y.value;
+    dual<T, N> r;
+    r.value = atan2(y.value, x.value);
+    for (int i = 0; i < N; ++i) r.grad[i] = (x.value * y.grad[i] - y.value * x.grad[i]) / r2;
+    return r;
+}
+template <class T, int N, class U> requires dual_operand<U, T>
+dual<T, N> atan2(const dual<T, N>& y, const U& x) { return atan2(y, dual<T, N>(x)); }
+template <class T, int N, class U> requires dual_operand<U, T>
+dual<T, N> atan2(const U& y, const dual<T, N>& x) { return atan2(dual<T, N>(y), x); }
+template <class T, int N> dual<T, N> hypot(const dual<T, N>& x, const dual<T, N>& y) {
+    using std::hypot;
+    const T h = hypot(x.value, y.value);
+    dual<T, N> r;
+    r.value = h;
+    for (int i = 0; i < N; ++i) r.grad[i] = (x.value * x.grad[i] + y.value * y.grad[i]) / h;
+    return r;
+}
+template <class T, int N, class U> requires dual_operand<U, T>
+dual<T, N> hypot(const dual<T, N>& x, const U& y) { return hypot(x, dual<T, N>(y)); }
+template <class T, int N, class U> requires dual_operand<U, T>
+dual<T, N> hypot(const U& x, const dual<T, N>& y) { return hypot(dual<T, N>(x), y); }
 template <class T, int N> dual<T, N> abs(const dual<T, N>& a) {
     return a.value < T(0) ? -a : a;
 }
+template <class T, int N> dual<T, N> fabs(const dual<T, N>& a) { return abs(a); }
 template <class T, int N> dual<T, N> abs2(const dual<T, N>& a) { return a * a; }
 template <class T, int N> dual<T, N> pow(const dual<T, N>& a, const T& e) {
     using std::pow;
@@ -185,8 +269,20 @@ template <class T, int N> dual<T, N> pow(const dual<T, N>& a, const T& e) {
 template <class T, int N, class U> requires std::is_arithmetic_v<U> && (!std::same_as<U, T>)
 dual<T, N> pow(const dual<T, N>& a, U e) { return pow(a, T(e)); }
 template <class T, int N> dual<T, N> pow(const dual<T, N>& a, const dual<T, N>& e) {
-    return exp(e * log(a));
+    using std::pow; using std::log;
+    // d(a^e) = e a^(e-1) da + a^e log(a) de; the log term only where e varies,
+    // so that a <= 0 with a constant integer e stays finite.
+    const T pm1 = pow(a.value, e.value - T(1)), v = pm1 * a.value;
+    bool e_varies = false;
+    for (const T& g : e.grad) e_varies = e_varies || g != T(0);
+    const T log_a = e_varies ? log(a.value) : T(0);
+    dual<T, N> r;
+    r.value = v;
+    for (int i = 0; i < N; ++i) r.grad[i] = e.value * pm1 * a.grad[i] + (e_varies ? v * log_a * e.grad[i] : T(0));
+    return r;
 }
+template <class T, int N, class U> requires dual_operand<U, T>
+dual<T, N> pow(const U& base, const dual<T, N>& e) { return pow(dual<T, N>(base), e); }
 template <class T, int N> bool isfinite(const dual<T, N>& a) {
     using std::isfinite;
     if (!isfinite(a.value)) return false;

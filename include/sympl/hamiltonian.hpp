@@ -11,6 +11,7 @@
 // Whatever is missing is derived by forward-mode automatic differentiation of
 // kinetic/potential (dual.hpp), which costs about n evaluations of T or V per
 // gradient: give analytic gradients for large systems.
+#include <cmath>
 #include <concepts>
 #include <string>
 #include <utility>
@@ -50,6 +51,41 @@ template <class H, class Vec>
 concept has_analytic_force = has_force_into<H, Vec> || has_force_value<H, Vec>;
 template <class H, class Vec>
 concept has_analytic_velocity = has_velocity_into<H, Vec> || has_velocity_value<H, Vec>;
+
+// A Hamiltonian written for one dimension may say so, as a constant
+// `static constexpr int dimension` or a member `dimension()`; the steppers then
+// refuse a state of another size before the first force reads past its end.
+template <class H>
+concept declares_dimension = requires(const H& h) {
+    { h.dimension() } -> std::convertible_to<Eigen::Index>;
+} || requires {
+    { H::dimension } -> std::convertible_to<Eigen::Index>;
+};
+
+template <class H>
+Eigen::Index declared_dimension(const H& h) {
+    if constexpr (requires { h.dimension(); }) return h.dimension();
+    else return H::dimension;
+}
+
+// What a stepper checks once per call, before it touches the state: q and p of
+// one size, the size the Hamiltonian declares (if it does), every component finite.
+template <class H, class State>
+void check_state(const H& h, const State& x, const char* who) {
+    if (x.q.size() != x.p.size())
+        throw invalid_argument(std::string(who) + ": q has " + std::to_string(x.q.size()) + " components but p has " +
+                               std::to_string(x.p.size()) + "; expected equal dimensions");
+    if constexpr (declares_dimension<H>)
+        if (x.q.size() != declared_dimension(h))
+            throw invalid_argument(std::string(who) + ": the state has dimension " + std::to_string(x.q.size()) +
+                                   " but the Hamiltonian is written for dimension " +
+                                   std::to_string(declared_dimension(h)) + "; expected equal dimensions");
+    using std::isfinite;
+    for (Eigen::Index i = 0; i < x.q.size(); ++i)
+        if (!isfinite(x.q[i]) || !isfinite(x.p[i]))
+            throw invalid_argument(std::string(who) + ": the state is not finite (component " + std::to_string(i) +
+                                   " of q or p); expected finite q and p");
+}
 
 namespace detail {
 // Width of the dual numbers used to differentiate an n-dimensional function:

@@ -144,6 +144,8 @@ run_summary integrate_steps(Stepper& stepper, typename Stepper::state_type& x, t
     using T = typename Stepper::scalar;
     using State = typename Stepper::state_type;
     detail::check_dt(dt, "integrate_steps");
+    using std::isfinite;
+    if (!isfinite(t0)) throw invalid_argument("integrate_steps: t0 = " + detail::number(t0) + "; expected a finite time");
     if (options.observe_every == 0 || options.check_every == 0)
         throw invalid_argument("integrate_steps: observe_every = " + std::to_string(options.observe_every) +
                                ", check_every = " + std::to_string(options.check_every) + "; expected both >= 1");

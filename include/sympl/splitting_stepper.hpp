@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "error.hpp"
@@ -84,10 +85,11 @@ private:
         if (!isfinite(dt) || dt == scalar(0))
             throw invalid_argument("splitting_stepper: dt = " + std::to_string(static_cast<double>(primal(dt))) +
                                    "; expected a finite non-zero step size");
-        if (x.q.size() != x.p.size())
-            throw invalid_argument("splitting_stepper: q has " + std::to_string(x.q.size()) + " components but p has " +
-                                   std::to_string(x.p.size()) + "; expected equal dimensions");
-        if (force_.size() != x.q.size()) size_workspace(x.q.size());  // once per dimension
+        check_state(h_, x, "splitting_stepper");
+        if (force_.size() != x.q.size()) {  // once per dimension
+            size_workspace(x.q.size());
+            if constexpr (State::dimension == Eigen::Dynamic) check_output_sizes(x);
+        }
     }
 
     void size_workspace(Eigen::Index n) {
@@ -96,6 +98,23 @@ private:
             v->resize(n);
             v->setZero();
         }
+    }
+
+    // A user's force or velocity that returns a vector of another size would
+    // write past the state in the loop: tried once per new dimension, at the
+    // state about to be stepped, before any step (not counted as evaluations).
+    void check_output_sizes(const State& x) {
+        const Eigen::Index n = x.q.size();
+        force(h_, x.q, force_);
+        velocity(h_, x.p, velocity_);
+        for (auto [what, size] : {std::pair{"force", force_.size()}, std::pair{"velocity", velocity_.size()}})
+            if (size != n) {
+                const Eigen::Index got = size;
+                force_.resize(0);  // checked again on the next call
+                throw invalid_argument("splitting_stepper: the Hamiltonian's " + std::string(what) + " returned " +
+                                       std::to_string(got) + " components for a state of dimension " +
+                                       std::to_string(n) + "; expected equal dimensions");
+            }
     }
 
     // Kahan summation: y += inc with the carried rounding error e.

@@ -296,8 +296,16 @@ inline table concatenate(const table& a, const table& b, coefficient fraction = 
     std::vector<substep> ops;
     detail::append_scaled(ops, a, fraction);
     detail::append_scaled(ops, b, 1 - fraction);
-    const int order = (a.order() == 0 || b.order() == 0) ? 0 : std::min(a.order(), b.order());
-    return table::from_substeps(a.name() + "+" + b.name(), ops, order, {}, detail::stricter(a.requirement(), b.requirement()));
+    // Each part's local error is O(dt^(p+1)), so the result has at least the
+    // smaller order; a symmetric result has even order (Hairer, Lubich & Wanner,
+    // GNI Thm. II.3.2), so an odd one is one more: Euler-Cromer then its adjoint
+    // over half steps each is the leapfrog, order 2.
+    int order = (a.order() == 0 || b.order() == 0) ? 0 : std::min(a.order(), b.order());
+    table joined = table::from_substeps(a.name() + "+" + b.name(), ops, order, {},
+                                        detail::stricter(a.requirement(), b.requirement()));
+    if (order % 2 == 1 && joined.is_symmetric())
+        joined = table::from_substeps(joined.name(), joined.substeps(), order + 1, {}, joined.requirement());
+    return joined;
 }
 
 // base(w_1 dt) o base(w_2 dt) o ... : the weights must sum to 1. `order` is the
