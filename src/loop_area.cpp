@@ -9,7 +9,9 @@
 namespace sympl::app {
 
 double loop_area_error(const problem& p, const method_spec& m, run_request rq, double t0, double t_end) {
-    rq.energy = false;
+    // Energy watched so that a loop point that runs away (finite but huge)
+    // counts as unstable instead of giving a meaningless area.
+    rq.energy = p.hamiltonian;
     rq.timing_repeats = 0;
     rq.trajectory = nullptr;
     rq.trajectory_every = rq.energy_series_every = 0;

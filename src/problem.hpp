@@ -24,6 +24,9 @@ struct run_request {
     std::ostream* trajectory = nullptr;
     int timing_repeats = 1;               // wall-time measurements of unobserved runs (0: no timing)
     double min_measurement = 2e-3;        // each measurement repeats the run until it lasts this long [s]
+    // Called with the current time every 2^18 steps of the observed run
+    // (a terminal's progress line); empty: nothing.
+    std::function<void(double t)> progress;
 };
 
 struct run_result {

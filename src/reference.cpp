@@ -14,7 +14,7 @@ namespace sympl::app {
 namespace fs = std::filesystem;
 
 reference_state make_reference(const scene& s, const problem& p, double finest_dt, const fs::path& cache) {
-    if (p.exact) return {p.exact(s.t_end - s.t0), 0.0, "exact"};
+    if (p.exact) return {p.exact(s.t_end - s.t0), 0.0, "exact", {}};
     const double dt = finest_dt / 4;
     const std::string kind =
         p.hamiltonian ? "sofroniou_spaletta_10, long double, dt = " + format_number(dt) : "rk4, dt = " + format_number(dt);
@@ -29,16 +29,22 @@ reference_state make_reference(const scene& s, const problem& p, double finest_d
         std::ifstream in(file);
         std::string stored;
         std::getline(in, stored);
-        reference_state r{{}, 0, kind + " (cached)"};
+        reference_state r{{}, 0, kind + " (cached)", {}};
         double v;
         if (stored == key.str() && in >> r.error) {
             while (in >> v) r.x.push_back(v);
             if (r.x.size() == p.x0.size()) return r;
         }
     }
-    const auto coarse = p.reference(s.t0, s.t_end, 2 * dt, p.x0);
-    const auto fine = p.reference(s.t0, s.t_end, dt, p.x0);
-    reference_state r{fine, relative_difference(coarse, fine), kind};
+    std::vector<double> coarse, fine;
+    try {
+        coarse = p.reference(s.t0, s.t_end, 2 * dt, p.x0);
+        fine = p.reference(s.t0, s.t_end, dt, p.x0);
+    } catch (const integration_error& e) {
+        return {{}, -1, kind, "the reference (" + kind + ", a quarter of the finest step " + format_number(finest_dt) +
+                                  ", and twice that) failed: " + e.what()};
+    }
+    reference_state r{fine, relative_difference(coarse, fine), kind, {}};
     if (!file.empty()) {
         fs::create_directories(cache);
         atomic_file out(file);

@@ -16,6 +16,10 @@ struct reference_state {
     std::vector<double> x;
     double error = 0;  // relative; 0 for an exact solution
     std::string kind;  // how it was made
+    // Not empty when the reference run itself blew up: what happened, with the
+    // reference's own dt. No final errors are measured against it then; the
+    // methods still run and report everything else.
+    std::string failure;
 };
 
 // `finest_dt`: the smallest step the runs to be compared use. With `cache`

@@ -14,6 +14,7 @@
 
 #include "format.hpp"
 #include "loop_area.hpp"
+#include "output_set.hpp"
 #include "reference.hpp"
 #include "studies/study.hpp"
 #include "work_precision.hpp"
@@ -80,7 +81,7 @@ void write_work_precision_csv(const std::vector<row>& rows, const std::map<const
                                   ok ? std::to_string(r.r.force_evaluations) : "", ok ? csv_number(r.r.seconds) : "",
                                   ok ? csv_number(r.r.seconds_min) : "", ok ? csv_number(r.r.seconds_max) : "",
                                   ok ? csv_number(r.r.max_energy_error) : "", ok ? csv_number(r.final_error) : "",
-                                  format_number(references.at(r.s).error, 3), ok ? csv_number(r.loop_area_error) : ""});
+                                  csv_number(references.at(r.s).error), ok ? csv_number(r.loop_area_error) : ""});
     }
     csv.commit();
 }
@@ -89,15 +90,15 @@ void plot_work_precision(const std::vector<row>& rows, const std::vector<scene>&
     const int cols = scenes.size() > 1 ? 2 : 1, rows_n = int((scenes.size() + 1) / 2);
     atomic_file gp(dir / "work_precision.gp");
     gp.stream() << "set terminal pngcairo size " << 700 * cols << "," << 450 * rows_n << "\nset output "
-                << gnuplot_string((dir / "work_precision.png").string())
+                << gnuplot_string("work_precision.png")
                 << "\nset logscale xy\nset format x '10^{%L}'\nset format y '10^{%L}'\n"
                 << "set xlabel 'wall time [s]'\nset ylabel 'final error (relative)'\nset key outside right font ',8'\n"
                 << "set multiplot layout " << rows_n << "," << cols << "\n";
     std::vector<std::unique_ptr<atomic_file>> data_files;
     for (std::size_t k = 0; k < scenes.size(); ++k) {
         const scene& s = scenes[k];
-        const fs::path data = dir / ("wp_" + std::to_string(k + 1) + "_" + file_name_part(s.name) + ".dat");
-        auto d = std::make_unique<atomic_file>(data);
+        const std::string data = "wp_" + std::to_string(k + 1) + "_" + file_name_part(s.name) + ".dat";
+        auto d = std::make_unique<atomic_file>(dir / data);
         for (const scene_method& m : s.methods) {
             int points = 0;
             for (const row& r : rows)
@@ -110,7 +111,7 @@ void plot_work_precision(const std::vector<row>& rows, const std::vector<scene>&
         }
         gp.stream() << "set title " << gnuplot_string(s.name) << " noenhanced\nplot ";
         for (std::size_t i = 0; i < s.methods.size(); ++i)
-            gp.stream() << (i ? ", " : "") << gnuplot_string(data.string()) << " index " << i << " with linespoints title "
+            gp.stream() << (i ? ", " : "") << gnuplot_string(data) << " index " << i << " with linespoints title "
                         << gnuplot_string(s.methods[i].name) << " noenhanced";
         gp.stream() << "\n";
         data_files.push_back(std::move(d));
@@ -176,10 +177,14 @@ void run_report(const std::vector<scene>& scenes, const report_options& options,
         if (!names.insert(s.name).second)
             throw scene_error(s.source + ": a second scene named '" + s.name + "'; expected each scene name once");
     std::vector<problem> problems;
-    for (const scene& s : scenes) problems.push_back(problem_of(s));
+    for (const scene& s : scenes) {
+        problems.push_back(problem_of(s));
+        check_run_size(s, problems.back(), options.max_steps, true);
+    }
 
-    const fs::path dir = options.out_dir;
-    fs::create_directories(dir);
+    // Written into a staging directory and moved into place together at the end.
+    output_set outputs(options.out_dir);
+    const fs::path dir = outputs.staging();
     const progress bar;
     std::vector<row> rows;
     std::map<const scene*, reference_state> references;
@@ -190,7 +195,7 @@ void run_report(const std::vector<scene>& scenes, const report_options& options,
         const std::string head = "[" + std::to_string(k + 1) + "/" + std::to_string(scenes.size()) + "] " + s.name;
         bar.show(head + ": reference");
         const reference_state& ref = references[&s] =
-            make_reference(s, p, finest_step(s), dir / "cache");
+            make_reference(s, p, finest_step(s), outputs.directory() / "cache");
         for (const scene_method& m : s.methods) {
             const bool adaptive = entry_of(m.kind).adaptive;
             for (double v : sweep_of(s, m)) {
@@ -201,8 +206,13 @@ void run_report(const std::vector<scene>& scenes, const report_options& options,
                 rq.tolerance = v;
                 rq.energy = p.hamiltonian;
                 rq.timing_repeats = 0;
+                if (bar.tty)
+                    rq.progress = [&](double t) {
+                        bar.show(head + ": " + m.name + " " + format_number(v) + ", t = " + format_number(t, 6) + " of " +
+                                 format_number(s.t_end, 6));
+                    };
                 r.r = p.run(m, rq, s.t0, s.t_end, p.x0);
-                if (r.r.stable) r.final_error = relative_difference(r.r.final_state, ref.x);
+                if (r.r.stable && ref.failure.empty()) r.final_error = relative_difference(r.r.final_state, ref.x);
                 if (r.r.stable && s.output.loop_area) r.loop_area_error = loop_area_error(p, m, rq, s.t0, s.t_end);
                 rows.push_back(std::move(r));
             }
@@ -240,6 +250,12 @@ void run_report(const std::vector<scene>& scenes, const report_options& options,
        << rounds << " measurements with nothing observed, taken in rounds over all runs (interleaved between methods); "
           "each measurement repeats the run until it lasts "
        << (options.quick ? "1 ms" : "5 ms") << " (min and max in work_precision.csv).\n\n";
+    for (const scene& s : scenes)
+        if (const std::string& why = references.at(&s).failure; !why.empty()) {
+            md << "**" << markdown_cell(s.name) << ": no final errors.** " << markdown_cell(why)
+               << " The methods' runs, energy errors and blow-ups are in work_precision.csv.\n\n";
+            table << s.name << ": no final errors: " << why << "\n";
+        }
     fastest_per_level(rows, scenes, md, table, dir);
     const bool plots = options.plots && have_gnuplot();
     if (plots) plot_work_precision(rows, scenes, dir);
@@ -258,10 +274,13 @@ void run_report(const std::vector<scene>& scenes, const report_options& options,
     atomic_file summary(dir / "summary.md");
     summary.stream() << md.str();
     summary.commit();
+    const bool drawn = plots && fs::exists(dir / "work_precision.png");
+    outputs.commit();
     bar.done();
-    out << table.str() << "\nwrote " << (dir / "summary.md").string() << ", " << (dir / "work_precision.csv").string()
-        << (plots && fs::exists(dir / "work_precision.png") ? ", " + (dir / "work_precision.png").string() : std::string())
-        << "\n";
+    const fs::path final_dir = outputs.directory();
+    out << table.str() << "\nwrote " << (final_dir / "summary.md").string() << ", "
+        << (final_dir / "work_precision.csv").string()
+        << (drawn ? ", " + (final_dir / "work_precision.png").string() : std::string()) << "\n";
 }
 
 }  // namespace sympl::app

@@ -14,6 +14,7 @@ struct report_options {
     bool quick = false;
     bool studies = true;   // stability map, Kepler e = 0.99, long run, extreme scales
     bool plots = true;     // PNGs with gnuplot when it is installed
+    double max_steps = default_max_steps;  // per run, checked before anything runs
 };
 
 // The study over `scenes`; writes into options.out_dir and prints a short table.

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <iomanip>
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <sstream>
 
@@ -11,7 +12,9 @@
 
 #include "format.hpp"
 #include "loop_area.hpp"
+#include "output_set.hpp"
 #include "reference.hpp"
+#include "studies/study.hpp"
 #include "writers.hpp"
 
 namespace sympl::app {
@@ -41,6 +44,7 @@ nlohmann::json as_json(const scene& s, const outcome& o, const reference_state& 
     if (o.final_error >= 0) j["final_error"] = o.final_error;
     if (o.loop_area_error >= 0) j["loop_area_error"] = o.loop_area_error;
     j["reference"] = ref.kind;
+    if (!ref.failure.empty()) j["reference_failure"] = ref.failure;
     j["seconds"] = std::max(r.seconds, 0.0);
     if (s.output.final_state && r.stable) j["final_state"] = r.final_state;
     return j;
@@ -52,12 +56,13 @@ std::string as_text(const scene& s, const outcome& o) {
     l << std::left << std::setw(24) << o.method->name;
     if (!r.stable) {
         l << "UNSTABLE: " << r.failure;
+        if (s.output.trajectory_every) l << " (the trajectory file ends there with a '# truncated' line)";
         return l.str();
     }
     l << std::right << std::setw(10) << r.steps << " steps" << std::setw(12) << r.force_evaluations
       << " forces   energy error " << std::setw(10)
       << (r.max_energy_error >= 0 ? format_number(r.max_energy_error, 3) : "-") << "   final error " << std::setw(10)
-      << format_number(o.final_error, 3) << "   " << format_number(r.seconds * 1e3, 3) << " ms";
+      << (o.final_error >= 0 ? format_number(o.final_error, 3) : "-") << "   " << format_number(r.seconds * 1e3, 3) << " ms";
     if (o.loop_area_error >= 0) l << "   loop area error " << format_number(o.loop_area_error, 3);
     if (s.output.final_state) {
         l << "\n    final state:";
@@ -68,16 +73,20 @@ std::string as_text(const scene& s, const outcome& o) {
 
 }  // namespace
 
-void run_scene(const scene& s, bool json, std::ostream& out) {
+void run_scene(const scene& s, bool json, std::ostream& out, double max_steps) {
     const problem p = problem_of(s);
+    check_run_size(s, p, max_steps, false);
     // The reference resolves the steps this run takes (the first of each sweep).
     double finest = s.dt.front();
     for (const scene_method& m : s.methods)
         if (steps_in_physical_time(m)) finest = std::min(finest, sweep_of(s, m).front());
     const reference_state ref = make_reference(s, p, finest);
-    const fs::path dir = s.output.directory;
-    fs::create_directories(dir);
+    // Files, when the scene asks for any, are staged and moved into place together.
+    std::optional<output_set> outputs;
+    if (s.output.trajectory_every) outputs.emplace(s.output.directory);
+    const fs::path dir = outputs ? outputs->staging() : fs::path(s.output.directory);
     std::vector<outcome> outcomes;
+    const progress bar;  // long runs show how far they are on a terminal
     std::vector<std::unique_ptr<atomic_file>> files;  // committed together at the end
     for (const scene_method& m : s.methods) {
         run_request rq;
@@ -85,6 +94,11 @@ void run_scene(const scene& s, bool json, std::ostream& out) {
         rq.tolerance = rq.dt;
         rq.energy = s.output.energy_error && p.hamiltonian;
         rq.timing_repeats = 1;
+        if (bar.tty)
+            rq.progress = [&](double t) {
+                bar.show("  " + m.name + ": t = " + format_number(t, 6) + " of " + format_number(s.t_end, 6) + " (" +
+                         format_number(100 * (t - s.t0) / (s.t_end - s.t0), 3) + "%)");
+            };
         std::unique_ptr<atomic_file> trajectory;
         if (s.output.trajectory_every) {
             trajectory = std::make_unique<atomic_file>(dir / (file_name_part(s.name) + "_" + file_name_part(m.name) +
@@ -97,12 +111,16 @@ void run_scene(const scene& s, bool json, std::ostream& out) {
             rq.trajectory_every = s.output.trajectory_every;
         }
         outcome o{&m, p.run(m, rq, s.t0, s.t_end, p.x0)};
+        if (trajectory && !o.r.stable)  // a comment line (gnuplot and CSV readers with '#' comments skip it)
+            trajectory->stream() << "# truncated: " << o.r.failure << "\n";
         if (trajectory) files.push_back(std::move(trajectory));
-        if (o.r.stable) o.final_error = relative_difference(o.r.final_state, ref.x);
+        if (o.r.stable && ref.failure.empty()) o.final_error = relative_difference(o.r.final_state, ref.x);
         if (o.r.stable && s.output.loop_area) o.loop_area_error = loop_area_error(p, m, rq, s.t0, s.t_end);
         outcomes.push_back(std::move(o));
     }
+    bar.done();
     for (auto& f : files) f->commit();
+    if (outputs) outputs->commit();
     if (json) {
         nlohmann::json all = nlohmann::json::array();
         for (const outcome& o : outcomes) all.push_back(as_json(s, o, ref));
@@ -114,6 +132,7 @@ void run_scene(const scene& s, bool json, std::ostream& out) {
         << "), reference: " << ref.kind;
     if (ref.error > 0) out << " (its own error ~" << format_number(ref.error, 2) << ")";
     out << "\n";
+    if (!ref.failure.empty()) out << "  no final errors: " << ref.failure << "\n";
     for (const outcome& o : outcomes) out << "  " << as_text(s, o) << "\n";
 }
 

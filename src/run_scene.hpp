@@ -8,6 +8,7 @@ namespace sympl::app {
 
 // Prints the summary (text, or JSON with every string escaped) and writes the
 // outputs the scene asks for, all together at the end.
-void run_scene(const scene& s, bool json, std::ostream& out);
+// A run longer than max_steps steps is refused up front (check_run_size).
+void run_scene(const scene& s, bool json, std::ostream& out, double max_steps = default_max_steps);
 
 }  // namespace sympl::app

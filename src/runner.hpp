@@ -194,6 +194,7 @@ private:
                 for (double v : buffer) *rq.trajectory << ',' << v;
                 *rq.trajectory << '\n';
             }
+            if (rq.progress && (step & 0x3FFFF) == 0 && step > 0) rq.progress(t);
             ++step;
         };
         if (energy) r.max_energy_error = 0;

@@ -260,11 +260,20 @@ scene parse_scene(const std::string& text, const std::string& source, bool quick
 }
 
 scene load_scene(const std::string& path, bool quick) {
-    std::ifstream in(path);
+    std::ifstream in(path, std::ios::binary);
     if (!in) throw scene_error(path + ": cannot open the scene file");
-    std::stringstream text;
-    text << in.rdbuf();
-    return parse_scene(text.str(), path, quick);
+    // Read at most one byte past the limit: /dev/zero or a huge file is refused
+    // without being read into memory.
+    std::string text(max_scene_bytes + 1, '\0');
+    in.read(text.data(), std::streamsize(text.size()));
+    text.resize(std::size_t(in.gcount()));
+    if (text.size() > max_scene_bytes)
+        throw scene_error(path + ": the scene file is larger than " + std::to_string(max_scene_bytes) +
+                          " bytes; expected a scene of at most that size");
+    if (text.find('\0') != std::string::npos)
+        throw scene_error(path + ":" + std::to_string(1 + std::count(text.begin(), text.begin() + std::ptrdiff_t(text.find('\0')), '\n')) +
+                          ": a NUL byte; expected a text file (TOML)");
+    return parse_scene(text, path, quick);
 }
 
 const std::vector<double>& sweep_of(const scene& s, const scene_method& m) {
@@ -282,9 +291,44 @@ double finest_step(const scene& s) {
 
 problem problem_of(const scene& s) {
     problem p = make_problem(s.system, s.parameters, s.q0, s.p0, s.source);
+    // An energy that is already infinite (q at a singularity, 1e308 squared)
+    // would make every energy error read 0 or NaN.
+    if (p.energy)
+        if (const double e0 = p.energy(p.x0); !std::isfinite(e0))
+            throw scene_error(s.source + ": the initial state of " + s.system + " has energy H = " + shortest(e0) +
+                              "; expected a state of finite energy");
     for (const method_spec& m : s.methods)
         if (const std::string why = why_not(m, p.form); !why.empty()) throw scene_error(s.source + ": " + why);
     return p;
+}
+
+void check_run_size(const scene& s, const problem& p, double max_steps, bool whole_sweep) {
+    const double span = s.t_end - s.t0;
+    const auto refuse = [&](const std::string& what, double dt, double steps) {
+        throw scene_error(s.source + ": " + what + " at dt = " + shortest(dt) + " over t = " + shortest(s.t0) + " .. " +
+                          shortest(s.t_end) + " takes " + format_number(steps, 3) + " steps; the limit is " +
+                          format_number(max_steps, 3) + " (raise it with --max-steps)");
+    };
+    double finest = HUGE_VAL;
+    for (const scene_method& m : s.methods) {
+        if (!steps_in_physical_time(m) || entry_of(m.kind).adaptive) continue;
+        const auto& sweep = sweep_of(s, m);
+        const std::size_t count = whole_sweep ? sweep.size() : 1;
+        const double inner = m.extrapolation_columns > 0
+                                 ? double(m.extrapolation_columns) * double(m.extrapolation_columns + 1) / 2
+                                 : 1.0;
+        for (std::size_t i = 0; i < count; ++i) {
+            finest = std::min(finest, sweep[i]);
+            if (const double steps = std::ceil(span / sweep[i]) * inner; !(steps <= max_steps))
+                refuse("method '" + m.name + "'", sweep[i], steps);
+        }
+    }
+    if (!std::isfinite(finest)) finest = whole_sweep ? finest_step(s) : s.dt.front();
+    if (whole_sweep) finest = std::min(finest, finest_step(s));
+    // The reference (reference.hpp) runs at finest/4 and finest/2 unless the system is exact.
+    if (!p.exact)
+        if (const double steps = std::ceil(span / (finest / 4)) * 1.5; !(steps <= max_steps))
+            refuse("the reference (its dt is a quarter of the finest step, " + shortest(finest) + ")", finest / 4, steps);
 }
 
 std::vector<scene> default_scenes(bool quick) {

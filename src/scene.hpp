@@ -51,6 +51,9 @@ struct scene_error : error {
     using error::error;
 };
 
+// A scene file is small text: larger ones are refused before they are read.
+inline constexpr std::size_t max_scene_bytes = 1 << 20;
+
 // `quick`: apply the scene's [quick] table (shorter t_end, fewer steps), if it has one.
 scene parse_scene(const std::string& text, const std::string& source, bool quick = false);
 scene load_scene(const std::string& path, bool quick = false);
@@ -65,6 +68,17 @@ double finest_step(const scene& s);
 // The scene's system as a problem, every method checked against it: a method
 // it cannot run is a scene_error before anything runs or is written.
 problem problem_of(const scene& s);
+
+// Runs longer than this many steps are refused before anything runs
+// (`--max-steps` raises it): about a minute of leapfrog on a small system.
+inline constexpr double default_max_steps = 1e9;
+
+// Refuses, with the figures, a scene whose runs would take more than
+// max_steps steps each: every fixed-step method at every step size it will
+// use (the whole sweep, or only its first value for `sympl run`), an
+// extrapolated method counting its inner steps, and the reference run.
+// LogH and adaptive methods choose their own steps and are not counted.
+void check_run_size(const scene& s, const problem& p, double max_steps, bool whole_sweep);
 
 // The built-in scenes: the TOML files of src/scenes/, compiled in.
 std::vector<scene> default_scenes(bool quick);

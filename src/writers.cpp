@@ -2,6 +2,7 @@
 #include "writers.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -104,8 +105,10 @@ std::string gnuplot_string(const std::string& text) {
 }
 
 namespace {
-// Runs gnuplot with `args` (argv[1..]), its stdout and stderr to /dev/null; its exit status.
-int spawn_gnuplot(std::vector<std::string> args) {
+// Runs gnuplot with `args` (argv[1..]) in directory `cwd` (empty: this one),
+// its stdout and stderr to /dev/null, with no signal blocked (the program
+// blocks its stop signals for interrupt.hpp): its exit status.
+int spawn_gnuplot(std::vector<std::string> args, const fs::path& cwd = {}) {
     args.insert(args.begin(), "gnuplot");
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());
@@ -114,8 +117,16 @@ int spawn_gnuplot(std::vector<std::string> args) {
     posix_spawn_file_actions_init(&actions);
     posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, "/dev/null", O_WRONLY, 0);
     posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
+    if (!cwd.empty()) posix_spawn_file_actions_addchdir_np(&actions, cwd.c_str());
+    posix_spawnattr_t attributes;
+    posix_spawnattr_init(&attributes);
+    sigset_t none;
+    sigemptyset(&none);
+    posix_spawnattr_setsigmask(&attributes, &none);
+    posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGMASK);
     pid_t pid = 0;
-    const int started = posix_spawnp(&pid, "gnuplot", &actions, nullptr, argv.data(), environ);
+    const int started = posix_spawnp(&pid, "gnuplot", &actions, &attributes, argv.data(), environ);
+    posix_spawnattr_destroy(&attributes);
     posix_spawn_file_actions_destroy(&actions);
     if (started != 0) return -1;
     int status = 0;
@@ -129,7 +140,11 @@ bool have_gnuplot() { return spawn_gnuplot({"--version"}) == 0; }
 
 void run_gnuplot(const fs::path& script, const fs::path& png) {
     std::error_code ec;
-    if (spawn_gnuplot({fs::absolute(script, ec).string()}) != 0 || !fs::exists(png, ec) || fs::file_size(png, ec) == 0) {
+    // In the script's directory: the scripts name their files relative to it,
+    // so they still work once the output set is moved into place.
+    const fs::path where = fs::absolute(script, ec);
+    if (spawn_gnuplot({where.filename().string()}, where.parent_path()) != 0 || !fs::exists(png, ec) ||
+        fs::file_size(png, ec) == 0) {
         fs::remove(png, ec);
         std::cerr << "sympl: gnuplot could not draw " << png.string() << " (script: " << script.string() << ")\n";
     }

@@ -48,8 +48,9 @@ std::string gnuplot_string(const std::string& text);
 
 // Whether gnuplot can be started.
 bool have_gnuplot();
-// Runs `gnuplot script` (no shell: an argument list). A failure, or a PNG that
-// was not drawn, is said on stderr and leaves no empty PNG behind.
+// Runs `gnuplot script` in the script's directory (no shell: an argument
+// list; scripts name their files relative to that directory). A failure, or a
+// PNG that was not drawn, is said on stderr and leaves no empty PNG behind.
 void run_gnuplot(const std::filesystem::path& script, const std::filesystem::path& png);
 
 }  // namespace sympl::app

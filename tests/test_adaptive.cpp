@@ -59,7 +59,7 @@ TEST_CASE("adaptive: Euler-Richardson meets its tolerance on Kepler e = 0.9 with
     CHECK(max_difference(x, hamiltonians::kepler::exact_state(0.9, period)) < 1e-6 * double(r.accepted));
 }
 
-TEST_CASE("adaptive: a step that cannot shrink enough stops with an error; the state stays at the last accepted step") {
+TEST_CASE("adaptive: a step that cannot shrink enough stops with an error, the state stays at the last accepted step") {
     adaptive_options o;
     o.tolerance = 1e-30;
     o.dt_min = 1e-6;

@@ -114,7 +114,7 @@ TEST_CASE("classic: measured global orders match the textbooks' theory on oscill
     }
 }
 
-TEST_CASE("classic: two-step leapfrog (eq. 3.47) is second order; plain velocity dependence costs an order") {
+TEST_CASE("classic: two-step leapfrog (eq. 3.47) is second order, plain velocity dependence costs an order") {
     CHECK(std::fabs(order_on<leapfrog_two_step>(newton_oscillator) - 2) <= 0.15);
     CHECK(std::fabs(order_on<leapfrog_two_step>(newton_pendulum) - 2) <= 0.15);
     CHECK(std::fabs(order_on<leapfrog_two_step>(damped) - 1) <= 0.15);
@@ -251,7 +251,7 @@ TEST_CASE("classic: Euler-Richardson's estimate tracks the true error of the hal
     }
 }
 
-TEST_CASE("classic: predictor-corrector that does not converge stops with a clear error; nothing is lost") {
+TEST_CASE("classic: predictor-corrector that does not converge stops with a clear error, nothing is lost") {
     const hamiltonians::harmonic_oscillator stiff{1.0, 100.0};
     auto s = make_classic<predictor_corrector, State>(stiff, predictor_corrector_options{1e-12, 5});
     State x = start;

@@ -58,7 +58,7 @@ TEST_CASE("extrapolation: k columns of a symmetric order-p method give order p +
     }
 }
 
-TEST_CASE("extrapolation: the weights read a polynomial in h^2 at 0; their size bounds the rounding") {
+TEST_CASE("extrapolation: the weights read a polynomial in h^2 at 0, their size bounds the rounding") {
     splitting_stepper<hamiltonians::pendulum, X1> inner(hamiltonians::pendulum{}, method("leapfrog_kdk"));
     CHECK(extrapolation_stepper(inner, 1).amplification() == 1.0);
     // Two columns: (4 T(h/2) - T(h)) / 3, Richardson's combination (Gould & Tobochnik, eq. 3.68).

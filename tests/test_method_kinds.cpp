@@ -9,7 +9,7 @@
 
 using namespace sympl::app;
 
-TEST_CASE("method kinds: a name resolves to its kind; a scene's table comes first") {
+TEST_CASE("method kinds: a name resolves to its kind, a scene's table comes first") {
     CHECK(resolve_method("rk4", {})->kind == method_kind::classic);
     CHECK(resolve_method("odeint_rk4", {})->kind == method_kind::odeint_rk4);
     CHECK(resolve_method("odeint_dopri5", {})->kind == method_kind::odeint_dopri5);

@@ -78,7 +78,7 @@ TEST_CASE("phase_space_measures: the autodiff Jacobian equals the finite-differe
 // most a few ulps times ||M_k||^2, and these add. So after n steps
 // ||M^T J M - J|| <= c n s eps max_k ||M_k||^2 with c of order 1; on these
 // problems ||M_k|| grows with k, and the test takes c = 1 and ||M||^2 at the end.
-TEST_CASE("phase_space_measures: every catalog table keeps the symplecticity defect at roundoff; Odeint RK4 does not") {
+TEST_CASE("phase_space_measures: every catalog table keeps the symplecticity defect at roundoff, Odeint RK4 does not") {
     const std::size_t n = 10000;
     const auto check_system = [&](const std::string& system, const auto& h, const auto& x0, double dt) {
         CAPTURE(system);
@@ -107,7 +107,7 @@ TEST_CASE("phase_space_measures: every catalog table keeps the symplecticity def
     check_system("Henon-Heiles", hamiltonians::henon_heiles{}, hamiltonians::henon_heiles::initial_state(1.0 / 8), 0.05);
 }
 
-TEST_CASE("phase_space_measures: a carried loop keeps its area within the polygon's resolution; RK4's does not") {
+TEST_CASE("phase_space_measures: a carried loop keeps its area within the polygon's resolution, RK4's does not") {
     // A circle of radius 0.15 around (0.3, 0) in the pendulum's phase plane,
     // 1e4 steps of dt = 0.3: the loop winds into a filament 30 times longer.
     const hamiltonians::pendulum h{};

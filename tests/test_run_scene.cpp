@@ -2,6 +2,7 @@
 #include <doctest/doctest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <string>
 
@@ -13,6 +14,15 @@
 
 using namespace sympl::app;
 namespace fs = std::filesystem;
+
+namespace {
+// `sympl run --json` of a scene given as text.
+nlohmann::json run_json(const std::string& text, const std::string& source) {
+    std::ostringstream out;
+    run_scene(parse_scene(text, source), true, out);
+    return nlohmann::json::parse(out.str());
+}
+}  // namespace
 
 TEST_CASE("run: writes the trajectory it is asked for and nothing else") {
     const fs::path dir = scratch_directory("sympl_test_run");
@@ -33,19 +43,21 @@ TEST_CASE("run: writes the trajectory it is asked for and nothing else") {
     const auto rows = read_csv(dir / "run.toml_blanes_moan_s6_trajectory.csv");
     CHECK(rows.size() == 1 + 11);  // header, t = 0.0, 0.1, ..., 1.0
     CHECK(rows[0].size() == 5);
-    std::size_t files = 0;
-    for (const auto& entry : fs::directory_iterator(dir)) files += entry.is_regular_file();
+    // The trajectory, and the (hidden) lock that keeps a second run out; no staging left.
+    std::size_t files = 0, entries = 0;
+    for (const auto& entry : fs::directory_iterator(dir)) {
+        files += entry.is_regular_file() && entry.path().filename() != ".sympl.lock";
+        ++entries;
+    }
     CHECK(files == 1);
+    CHECK(entries == 2);
     fs::remove_all(dir);
 }
 
 TEST_CASE("run: the loop area a scene asks for: kept by a symplectic table, lost by RK4 at a coarse step") {
-    const scene s = parse_scene("system = \"pendulum\"\nmethods = [\"leapfrog_kdk\", \"rk4\"]\ndt = 0.5\nt_end = 200\n"
-                                "[output]\nloop_area = true\nenergy_error = false\n",
-                                "area.toml");
-    std::ostringstream out;
-    run_scene(s, true, out);
-    const auto json = nlohmann::json::parse(out.str());
+    const auto json = run_json("system = \"pendulum\"\nmethods = [\"leapfrog_kdk\", \"rk4\"]\ndt = 0.5\nt_end = 200\n"
+                               "[output]\nloop_area = true\nenergy_error = false\n",
+                               "area.toml");
     REQUIRE(json.size() == 2);
     const double leapfrog = json[0]["loop_area_error"], rk4 = json[1]["loop_area_error"];
     CHECK(leapfrog < 2e-3);      // within the polygon's resolution (max_gap r/16)
@@ -71,5 +83,36 @@ TEST_CASE("run: names with quotes, commas and line breaks stay inside their JSON
     run_scene(s, true, out);
     const auto json = nlohmann::json::parse(out.str());
     CHECK(json[0]["scene"] == "a \"quoted\", name\nwith a break");
+    fs::remove_all(dir);
+}
+
+TEST_CASE("run: a reference that blows up is reported as the reference's failure, and the methods still run") {
+    // Stiff FPU at dt = 0.5: the long-double reference at dt = 0.125 and 0.25 blows up.
+    const auto json = run_json("system = \"stiff_fpu\"\nmethods = [\"leapfrog_kdk\", \"odeint_dopri5\"]\ndt = 0.5\n"
+                               "t_end = 10\n",
+                               "stiff.toml");
+    REQUIRE(json.size() == 2);
+    CHECK(json[0]["reference_failure"].get<std::string>().find("the reference (sofroniou_spaletta_10, long double, "
+                                                               "dt = 0.125") == 0);
+    CHECK_FALSE(json[0].contains("final_error"));
+    CHECK(json[1]["status"] == "stable");  // dopri5 adapts its step: its run and energy error are reported
+    CHECK(json[1].contains("max_energy_error"));
+    CHECK_FALSE(json[1].contains("final_error"));
+}
+
+TEST_CASE("run: the trajectory of a run that blows up ends with a line that says so") {
+    const fs::path dir = scratch_directory("sympl_test_run_truncated");
+    fs::remove_all(dir);
+    const scene s = parse_scene("name = \"t\"\nsystem = \"harmonic_oscillator\"\nparameters = {omega = 10}\n"
+                                "methods = [\"leapfrog_kdk\"]\ndt = 0.3\nt_end = 100\n[output]\ntrajectory_every = 1\n"
+                                "directory = \"" + dir.string() + "\"\n",
+                                "t.toml");
+    std::ostringstream out;
+    run_scene(s, false, out);
+    CHECK(out.str().find("UNSTABLE") != std::string::npos);
+    std::ifstream in(dir / "t_leapfrog_kdk_trajectory.csv");
+    std::string line, last;
+    while (std::getline(in, line)) last = line;
+    CHECK(last.rfind("# truncated: the run diverged", 0) == 0);
     fs::remove_all(dir);
 }

@@ -1,6 +1,10 @@
 // Scene files: what they may say, and errors that name file, line and column.
 #include <doctest/doctest.h>
 
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
 #include <string>
 
 #include "scene.hpp"
@@ -83,4 +87,57 @@ TEST_CASE("scene: the built-in set parses, quick and full") {
         CHECK(s.dt.size() >= 3);
         CHECK(s.t_end > s.t0);
     }
+}
+
+TEST_CASE("scene: files too large are refused before they are read, NUL bytes named with their line") {
+    CHECK_THROWS_WITH_AS(load_scene("/dev/zero"), doctest::Contains("larger than 1048576 bytes"), scene_error);
+    const std::string path = "/tmp/sympl_test_nul_" + std::to_string(::getpid()) + ".toml";
+    {
+        std::ofstream f(path, std::ios::binary);
+        f << "system = \"kepler\"\nname = \"a";
+        f.put('\0');
+        f << "\"\n";
+    }
+    CHECK_THROWS_WITH_AS(load_scene(path), doctest::Contains(":2: a NUL byte"), scene_error);
+    std::remove(path.c_str());
+}
+
+TEST_CASE("scene: runs beyond the step limit are refused up front with the figures, and the limit can be raised") {
+    const scene s = parse_scene("system = \"harmonic_oscillator\"\nmethods = [\"leapfrog_kdk\", "
+                                "\"extrapolated(leapfrog_kdk, 4)\"]\ndt = [0.1, 0.001]\nt_end = 1000\n",
+                                "long.toml");
+    const problem p = problem_of(s);
+    // sympl run uses the first dt: 1e4 steps, extrapolated 1e5 inner steps.
+    CHECK_NOTHROW(check_run_size(s, p, 1e5, false));
+    CHECK_THROWS_WITH_AS(check_run_size(s, p, 99999, false),
+                         doctest::Contains("method 'extrapolated(leapfrog_kdk, 4)' at dt = 0.1 over t = 0 .. 1000 takes "
+                                           "1e+05 steps; the limit is 1e+05 (raise it with --max-steps)"),
+                         scene_error);
+    // The report runs the whole sweep: 1e6 steps of leapfrog at dt = 0.001.
+    CHECK_THROWS_WITH_AS(check_run_size(s, p, 1e5, true), doctest::Contains("'leapfrog_kdk' at dt = 0.001"), scene_error);
+    // Without an exact solution the reference counts: 1.5 runs at a quarter of the finest step.
+    const scene pendulum = parse_scene("system = \"pendulum\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.1\nt_end = 1000\n",
+                                       "pendulum.toml");
+    CHECK_THROWS_WITH_AS(check_run_size(pendulum, problem_of(pendulum), 5e4, false),
+                         doctest::Contains("the reference (its dt is a quarter of the finest step, 0.1) at dt = 0.025"),
+                         scene_error);
+    CHECK_NOTHROW(check_run_size(pendulum, problem_of(pendulum), 6e4, false));
+}
+
+TEST_CASE("scene: an initial state of infinite energy is refused, not reported as energy error 0") {
+    const auto error_of_initial = [](const std::string& system, const std::string& initial) {
+        try {
+            problem_of(parse_scene("system = \"" + system + "\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.1\nt_end = 1\n" +
+                                       "initial = " + initial + "\n",
+                                   "x.toml"));
+        } catch (const scene_error& e) {
+            return std::string(e.what());
+        }
+        return std::string("accepted");
+    };
+    CHECK(error_of_initial("harmonic_oscillator", "{q = [1e308], p = [1e308]}") ==
+          "x.toml: the initial state of harmonic_oscillator has energy H = inf; expected a state of finite energy");
+    CHECK(error_of_initial("kepler", "{q = [0, 0], p = [0, 1]}") ==
+          "x.toml: the initial state of kepler has energy H = -inf; expected a state of finite energy");
+    CHECK(error_of_initial("kepler", "{q = [1, 0], p = [0, 1]}") == "accepted");
 }

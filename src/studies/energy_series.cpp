@@ -40,13 +40,13 @@ void energy_series_study(const std::vector<scene>& scenes, const fs::path& dir, 
     csv.commit();
     if (!plots) return;
     atomic_file gp(dir / "energy_vs_time.gp");
-    gp.stream() << "set terminal pngcairo size 900,600\nset output " << gnuplot_string((dir / "energy_vs_time.png").string())
+    gp.stream() << "set terminal pngcairo size 900,600\nset output " << gnuplot_string("energy_vs_time.png")
                 << "\nset datafile separator ','\nset logscale y\nset format y '10^{%L}'\nset xlabel 't'\n"
                 << "set ylabel 'relative energy error'\nset title "
                 << gnuplot_string(chosen->name + ": dt = " + format_number(dt) + " (dopri5: tolerance 1e-8)")
                 << " noenhanced\nset key outside noenhanced\nplot ";
     for (std::size_t i = 0; i < names.size(); ++i)
-        gp.stream() << (i ? ", " : "") << gnuplot_string((dir / "energy_vs_time.csv").string()) << " using (strcol(1) eq "
+        gp.stream() << (i ? ", " : "") << gnuplot_string("energy_vs_time.csv") << " using (strcol(1) eq "
                     << gnuplot_string(names[i]) << " ? $2 : NaN):($3 > 0 ? $3 : NaN) with lines title "
                     << gnuplot_string(names[i]) << " noenhanced";
     gp.stream() << "\n";
