@@ -89,3 +89,63 @@ TEST_CASE("bad arguments: non-positive or non-finite dt, t_end before t0, non-fi
     CHECK_THROWS_WITH_AS(integrate_steps(s, x, NAN, 0.1, 10), doctest::Contains("t0 = nan"), invalid_argument);
     CHECK(x.q[0] == 1.0);  // nothing computed was lost or changed
 }
+
+TEST_CASE("a run stopped after step k and resumed from the state and the stepper's memory is bit for bit the same") {
+    using K = phase_space<double, 2>;
+    using Stepper = splitting_stepper<hamiltonians::kepler, K>;
+    const double dt = 0.01;
+    const std::size_t n = 1000, k = 640;  // k: a multiple of observe_every (10) and of check_every (64)
+    for (bool compensated : {false, true})
+        for (const char* name : {"leapfrog_kdk", "blanes_moan_s6"})
+            for (bool observed : {false, true}) {
+                CAPTURE(compensated);
+                CAPTURE(name);
+                CAPTURE(observed);
+                run_options options;
+                options.observe_every = 10;
+                std::vector<double> seen_whole, seen_parts;
+                const auto recorder = [](std::vector<double>& into) {
+                    return [&into](const K& x, double t) { into.insert(into.end(), {t, x.q[0], x.q[1], x.p[0], x.p[1]}); };
+                };
+                const auto run = [&](Stepper& s, K& x, std::size_t steps, std::vector<double>& into) {
+                    if (observed) integrate_steps(s, x, 0.25, dt, steps, recorder(into), options);
+                    else integrate_steps(s, x, 0.25, dt, steps, no_observer{}, options);
+                };
+                Stepper whole({}, method(name), {compensated});
+                K a = hamiltonians::kepler::initial_state(0.7);
+                run(whole, a, n, seen_whole);
+
+                Stepper first({}, method(name), {compensated});
+                K b = hamiltonians::kepler::initial_state(0.7);
+                run(first, b, k, seen_parts);
+                const auto memory = first.memory();  // what a checkpoint file carries, with b
+                Stepper second({}, method(name), {compensated});
+                second.restore(memory);
+                options.first_step = k;
+                run(second, b, n, seen_parts);
+                for (int i = 0; i < 2; ++i) {
+                    CHECK(a.q[i] == b.q[i]);
+                    CHECK(a.p[i] == b.p[i]);
+                }
+                CHECK(whole.force_evaluations() == second.force_evaluations());
+                CHECK(seen_whole == seen_parts);
+                if (compensated) CHECK(memory.q_error.size() == 2);
+            }
+}
+
+TEST_CASE("a resume point that would group the steps differently is refused") {
+    splitting_stepper<hamiltonians::harmonic_oscillator, State> s({}, method("leapfrog_kdk"));
+    State x(V1(1.0), V1(0.0));
+    run_options options;
+    options.first_step = 100;  // not a multiple of check_every = 64
+    CHECK_THROWS_WITH_AS(integrate_steps(s, x, 0.0, 0.1, 1000, no_observer{}, options),
+                         doctest::Contains("first_step = 100 of 1000 steps; expected a multiple of 64 (check_every)"),
+                         invalid_argument);
+    options.first_step = 2000;
+    CHECK_THROWS_AS(integrate_steps(s, x, 0.0, 0.1, 1000, [](const State&, double) {}, options), invalid_argument);
+    // Memory of another size is refused by restore().
+    splitting_stepper<hamiltonians::harmonic_oscillator, phase_space<double>> d({}, method("leapfrog_kdk"), {true});
+    stepper_memory<Eigen::VectorXd> bad;
+    bad.force = bad.velocity = Eigen::VectorXd::Zero(3);
+    CHECK_THROWS_WITH_AS(d.restore(bad), doctest::Contains("memory of sizes 3, 3, 0, 0 (compensated)"), invalid_argument);
+}

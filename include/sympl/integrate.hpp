@@ -41,6 +41,14 @@ struct no_observer {
 struct run_options {
     std::size_t observe_every = 1;  // observer called at t0, every k steps, and at the end
     std::size_t check_every = 64;   // finiteness check interval (steps)
+    // Resume a run after its step `first_step` (a checkpoint): times stay
+    // t0 + i*dt from the integer index, the observer is not called again for
+    // the start, and the stepper is expected to hold the memory it had there
+    // (splitting_stepper::restore). The steps are then grouped exactly as in
+    // the uninterrupted run, so the result is bit for bit the same, when
+    // first_step is a multiple of observe_every (observed) or of check_every
+    // (not observed); other values are refused.
+    std::size_t first_step = 0;
 };
 
 struct run_summary {
@@ -153,16 +161,23 @@ run_summary integrate_steps(Stepper& stepper, typename Stepper::state_type& x, t
     const auto f0 = detail::forces(stepper);
     const auto v0 = detail::velocities(stepper);
     constexpr bool observed = !std::is_same_v<std::decay_t<Observer>, no_observer>;
+    const std::size_t cadence = observed ? options.observe_every : options.check_every;
+    if (options.first_step > n || options.first_step % cadence != 0)
+        throw invalid_argument("integrate_steps: first_step = " + std::to_string(options.first_step) + " of " +
+                               std::to_string(n) + " steps; expected a multiple of " + std::to_string(cadence) +
+                               (observed ? " (observe_every)" : " (check_every)") +
+                               " not beyond the last step, so that the steps group as in the uninterrupted run");
     State checkpoint = x;
-    if constexpr (observed) observer(std::as_const(x), t0);
-    std::size_t done = 0;
+    if constexpr (observed)
+        if (options.first_step == 0) observer(std::as_const(x), t0);
+    std::size_t done = options.first_step;
     while (done < n) {
         const std::size_t m = observed ? std::min(options.observe_every, n - done) : n - done;
         detail::checked_steps(stepper, x, checkpoint, t0, dt, done, m, options.check_every);
         done += m;
         if constexpr (observed) observer(std::as_const(x), t0 + T(done) * dt);
     }
-    return {n, static_cast<double>(primal(t0 + T(n) * dt)), detail::forces(stepper) - f0,
+    return {n - options.first_step, static_cast<double>(primal(t0 + T(n) * dt)), detail::forces(stepper) - f0,
             detail::velocities(stepper) - v0};
 }
 

@@ -28,6 +28,17 @@ struct stepper_options {
     bool compensated = false;
 };
 
+// What a run carries from one step to the next besides q and p: the last
+// force and velocity (reused when q or p has not moved), the compensated
+// summation's residuals, and the counters. Saved with the state after step k,
+// it lets a run continue bit for bit, in this process or another (checkpoints).
+template <class Vector>
+struct stepper_memory {
+    Vector force, velocity, q_error, p_error;  // residuals: empty unless compensated
+    bool force_fresh = false, velocity_fresh = false;
+    std::uint64_t force_evaluations = 0, velocity_evaluations = 0;
+};
+
 template <class H, class State>
     requires phase_space_state<State> && separable_hamiltonian<H, typename State::vector>
 class splitting_stepper {
@@ -63,6 +74,35 @@ public:
     void resume_steps(State& x, scalar dt, std::size_t n) {
         check_step(x, dt);
         run(x, dt, n, true);
+    }
+
+    // The carried memory after the last run, and its restoration into a
+    // stepper of the same Hamiltonian, table and options: the next
+    // resume_steps() (or a driver with run_options::first_step) continues as
+    // if never interrupted.
+    stepper_memory<vector> memory() const {
+        return {force_, velocity_, q_error_, p_error_, force_fresh_, velocity_fresh_, force_evaluations_,
+                velocity_evaluations_};
+    }
+    void restore(const stepper_memory<vector>& m) {
+        const Eigen::Index n = m.force.size();
+        const bool sizes = m.velocity.size() == n && (!options_.compensated || (m.q_error.size() == n && m.p_error.size() == n));
+        if (!sizes)
+            throw invalid_argument("splitting_stepper::restore: memory of sizes " + std::to_string(m.force.size()) + ", " +
+                                   std::to_string(m.velocity.size()) + ", " + std::to_string(m.q_error.size()) + ", " +
+                                   std::to_string(m.p_error.size()) + (options_.compensated ? " (compensated)" : "") +
+                                   "; expected force and velocity (and, compensated, both residuals) of one size");
+        size_workspace(n);
+        force_ = m.force;
+        velocity_ = m.velocity;
+        if (options_.compensated) {
+            q_error_ = m.q_error;
+            p_error_ = m.p_error;
+        }
+        force_fresh_ = m.force_fresh;
+        velocity_fresh_ = m.velocity_fresh;
+        force_evaluations_ = m.force_evaluations;
+        velocity_evaluations_ = m.velocity_evaluations;
     }
 
     std::uint64_t force_evaluations() const { return force_evaluations_; }
