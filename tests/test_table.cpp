@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <random>
 #include <string>
 
 #include <boost/numeric/odeint.hpp>
@@ -137,4 +138,92 @@ TEST_CASE("table: from_drift_first reproduces Boost.Odeint's symplectic_rkn_sb3a
     State z(Eigen::Matrix<double, 1, 1>(1.3), Eigen::Matrix<double, 1, 1>(0.2));
     for (int i = 0; i < 1000; ++i) cat.step(z, 0.05);
     CHECK(max_difference(x, z) <= 1e-13);
+}
+
+namespace {
+// Property tests of the table algebra over random tables (doctest loops over
+// a seeded generator: every failure names its case).
+// A random consistent table of 1..8 stages: coefficients in [-1, 1], the last
+// of each role closing its sum to 1.
+table random_table(std::mt19937_64& rng, int id) {
+    std::uniform_int_distribution<int> stages(1, 8);
+    std::uniform_real_distribution<double> c(-1, 1);
+    const int m = stages(rng);
+    std::vector<coefficient> kick(m), drift(m);
+    coefficient sk = 0, sd = 0;
+    for (int i = 0; i + 1 < m; ++i) {
+        sk += kick[i] = c(rng);
+        sd += drift[i] = c(rng);
+    }
+    kick[m - 1] = 1 - sk;
+    drift[m - 1] = 1 - sd;
+    return table("random_" + std::to_string(id), kick, drift);
+}
+
+bool same_coefficients(const table& a, const table& b, long double tolerance) {
+    if (a.kick().size() != b.kick().size()) return false;
+    for (std::size_t i = 0; i < a.kick().size(); ++i)
+        if (std::fabs(a.kick()[i] - b.kick()[i]) > tolerance || std::fabs(a.drift()[i] - b.drift()[i]) > tolerance)
+            return false;
+    return true;
+}
+}  // namespace
+
+TEST_CASE("table algebra: adjoint is an involution and reverses concatenation (500 random tables)") {
+    std::mt19937_64 rng(20261122);
+    for (int k = 0; k < 500; ++k) {
+        const table a = random_table(rng, 3 * k), b = random_table(rng, 3 * k + 1);
+        CAPTURE(k);
+        CHECK(adjoint(adjoint(a)) == a);
+        // (a then b)* = b* then a*, over the complementary fractions.
+        CHECK(same_coefficients(adjoint(concatenate(a, b, 0.3L)), concatenate(adjoint(b), adjoint(a), 0.7L), 1e-17L));
+        CHECK(concatenate(a, adjoint(a)).is_symmetric());
+    }
+}
+
+TEST_CASE("table algebra: concatenation is associative (500 random triples)") {
+    std::mt19937_64 rng(7);
+    for (int k = 0; k < 500; ++k) {
+        const table a = random_table(rng, 0), b = random_table(rng, 1), c = random_table(rng, 2);
+        CAPTURE(k);
+        // Each part a third of the step, grouped either way.
+        const table left = concatenate(concatenate(a, b, 0.5L), c, 2.0L / 3);
+        const table right = concatenate(a, concatenate(b, c, 0.5L), 1.0L / 3);
+        CHECK(same_coefficients(left, right, 1e-17L));
+    }
+}
+
+TEST_CASE("table algebra: a step of the adjoint at -dt undoes a step of the table (200 random tables, pendulum)") {
+    std::mt19937_64 rng(42);
+    using State = phase_space<double, 1>;
+    for (int k = 0; k < 200; ++k) {
+        const table t = random_table(rng, k);
+        CAPTURE(k);
+        splitting_stepper<hamiltonians::pendulum, State> forward({}, t), back({}, adjoint(t));
+        State x(Eigen::Matrix<double, 1, 1>(1.1), Eigen::Matrix<double, 1, 1>(-0.4));
+        const State x0 = x;
+        forward.step(x, 0.05);
+        back.step(x, -0.05);
+        // Rounding of about 2M sub-steps of size up to |c| dt ~ 0.05: a few hundred eps at most.
+        CHECK(max_difference(x, x0) <= 512 * std::numeric_limits<double>::epsilon());
+    }
+}
+
+TEST_CASE("table algebra: random invalid tables are refused (500 of each kind)") {
+    std::mt19937_64 rng(99);
+    std::uniform_real_distribution<double> off(1e-12, 1e-3);
+    for (int k = 0; k < 500; ++k) {
+        const table t = random_table(rng, k);
+        auto kick = t.kick(), drift = t.drift();
+        CAPTURE(k);
+        auto bad_sum = kick;
+        bad_sum.back() += off(rng);
+        CHECK_THROWS_AS(table("bad", bad_sum, drift), invalid_table);
+        auto bad_value = drift;
+        bad_value.front() = (k % 2) ? INFINITY : NAN;
+        CHECK_THROWS_AS(table("bad", kick, bad_value), invalid_table);
+        auto longer = kick;
+        longer.push_back(0);
+        CHECK_THROWS_AS(table("bad", longer, drift), invalid_table);
+    }
 }
