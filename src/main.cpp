@@ -20,6 +20,7 @@
 #include <sympl/sympl.hpp>
 #include <sympl/table_order.hpp>
 
+#include "coefficient_list.hpp"
 #include "format.hpp"
 #include "interrupt.hpp"
 #include "report.hpp"
@@ -99,41 +100,9 @@ void print_tables(bool json) {
               << " (to choose between methods: lower is better at equal cost).\n";
 }
 
-// check-table measures orders by running the table thousands of times in
-// 113-bit precision: 256 stages take about 3 s, 1000 over a minute.
-constexpr std::size_t max_check_table_stages = 256;
-
-// "0.5,0.5" -> {0.5, 0.5}; a bad token names itself.
-std::vector<sympl::coefficient> parse_list(const std::string& text, const std::string& option) {
-    std::vector<sympl::coefficient> out;
-    std::stringstream in(text);
-    std::string token;
-    while (std::getline(in, token, ',')) {
-        const auto first = token.find_first_not_of(" \t");
-        const auto last = token.find_last_not_of(" \t");
-        token = first == std::string::npos ? "" : token.substr(first, last - first + 1);
-        char* end = nullptr;
-        const long double v = std::strtold(token.c_str(), &end);
-        if (token.empty() || end != token.c_str() + token.size())
-            throw sympl::invalid_argument(option + ": '" + token + "' is not a number; expected a comma-separated list such as 0.5,0.5");
-        out.push_back(v);
-    }
-    if (out.empty()) throw sympl::invalid_argument(option + ": empty list; expected comma-separated numbers");
-    // getline drops an empty last field: a trailing comma means a coefficient is missing.
-    if (const auto last = text.find_last_not_of(" \t"); last != std::string::npos && text[last] == ',')
-        throw sympl::invalid_argument(option + ": a trailing comma after " + std::to_string(out.size()) +
-                                      " numbers; expected a number after every comma");
-    if (out.size() > max_check_table_stages)
-        throw sympl::invalid_argument(option + ": " + std::to_string(out.size()) + " coefficients; expected at most " +
-                                      std::to_string(max_check_table_stages) +
-                                      " (the order measurement's cost grows faster than the stage count: 1000 stages "
-                                      "took over a minute)");
-    return out;
-}
-
 int check_table(const std::string& kick_text, const std::string& drift_text, const std::string& convention, bool json) {
-    const auto kick = parse_list(kick_text, "--kick");
-    const auto drift = parse_list(drift_text, "--drift");
+    const auto kick = sympl::app::parse_coefficient_list(kick_text, "--kick");
+    const auto drift = sympl::app::parse_coefficient_list(drift_text, "--drift");
     const sympl::table t = convention == "seed"          ? sympl::from_seed("user", kick, drift)
                            : convention == "drift-first" ? sympl::from_drift_first("user", drift, kick)
                                                          : sympl::table("user", kick, drift);

@@ -1,0 +1,23 @@
+// libFuzzer target: any bytes as a scene file. Everything the program does
+// with a scene before it runs anything (parse, build the problem, check every
+// method against the system, check the run size) either succeeds or throws
+// sympl::error; any other exception, crash or sanitizer report is a finding.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include <sympl/error.hpp>
+
+#include "scene.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    if (size > sympl::app::max_scene_bytes) return 0;  // load_scene refuses these before parsing
+    const std::string text(reinterpret_cast<const char*>(data), size);
+    try {
+        const sympl::app::scene s = sympl::app::parse_scene(text, "fuzz.toml");
+        const sympl::app::problem p = sympl::app::problem_of(s);
+        sympl::app::check_run_size(s, p, sympl::app::default_max_steps, true);
+    } catch (const sympl::error&) {
+    }
+    return 0;
+}
