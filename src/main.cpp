@@ -186,6 +186,8 @@ int main(int argc, char** argv) {
             ->check(CLI::Range(1.0, 1e18));
     };
     max_steps_option(run, max_steps);
+    bool resume = false;
+    run->add_flag("--resume", resume, "continue from the scene's checkpoints (checkpoint = {every_steps, file})");
 
     auto* report = app.add_subcommand("report", "Work-precision study over scenes (default: the built-in set)");
     std::vector<std::string> report_files;
@@ -208,7 +210,7 @@ int main(int argc, char** argv) {
         if (*tables) print_tables(tables_json);
         if (*systems) print_systems(systems_json);
         if (*check) return check_table(kick, drift, convention, check_json);
-        if (*run) sympl::app::run_scene(sympl::app::load_scene(scene_file), run_json, std::cout, max_steps);
+        if (*run) sympl::app::run_scene(sympl::app::load_scene(scene_file), run_json, std::cout, max_steps, resume);
         if (*report) {
             std::vector<sympl::app::scene> scenes;
             for (const auto& f : report_files) scenes.push_back(sympl::app::load_scene(f, report_options.quick));

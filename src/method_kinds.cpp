@@ -14,7 +14,8 @@ const std::vector<method_kind_entry>& method_kinds() {
     static const std::vector<method_kind_entry> kinds = {
         {method_kind::table, "table", false, false, needs::separable_hamiltonian,
          "a splitting table: the catalog's (sympl tables) or a scene's own [[table]]; extrapolated(<symmetric table>, k) "
-         "extrapolates it over k runs of 1..k steps (order p + 2(k - 1))"},
+         "extrapolates it over k runs of 1..k steps (order p + 2(k - 1)); compensated(<table>) sums the updates with "
+         "Kahan's compensation"},
         {method_kind::logh, "logh", false, false, needs::negative_potential,
          "logh(<table>): the table in LogH fictitious time (Mikkola & Tanikawa 1999); dt is the fictitious step; "
          "extrapolated(logh(<symmetric table>), k) as above"},
@@ -104,6 +105,13 @@ method_spec extrapolated(const std::string& name, const std::map<std::string, ta
 std::optional<method_spec> resolve_method(const std::string& name, const std::map<std::string, table>& inline_tables) {
     if (name.size() > 14 && name.rfind("extrapolated(", 0) == 0 && name.back() == ')') return extrapolated(name, inline_tables);
     if (auto it = inline_tables.find(name); it != inline_tables.end()) return method_spec{name, method_kind::table, it->second};
+    if (name.size() > 13 && name.rfind("compensated(", 0) == 0 && name.back() == ')') {
+        auto inner = resolve_method(name.substr(12, name.size() - 13), inline_tables);
+        if (!inner || inner->kind != method_kind::table || inner->extrapolation_columns) return std::nullopt;
+        inner->name = name;
+        inner->compensated = true;
+        return inner;
+    }
     if (name.size() > 6 && name.rfind("logh(", 0) == 0 && name.back() == ')') {
         auto inner = resolve_method(name.substr(5, name.size() - 6), inline_tables);
         if (!inner || inner->kind != method_kind::table) return std::nullopt;
@@ -118,6 +126,17 @@ std::optional<method_spec> resolve_method(const std::string& name, const std::ma
     const auto& names = catalog_names();
     if (std::find(names.begin(), names.end(), name) != names.end()) return method_spec{name, method_kind::table, method(name)};
     return std::nullopt;
+}
+
+std::string why_not_resumable(const method_spec& m) {
+    bool history = false;
+    std::apply([&](const auto&... c) { ((m.name == c.name ? void(history = c.history) : void()), ...); }, classic_methods);
+    if ((m.kind == method_kind::table && !m.extrapolation_columns) || (m.kind == method_kind::classic && !history))
+        return "";
+    return "method '" + m.name + "' cannot be checkpointed: " +
+           (history ? std::string("it carries a history between steps that the state does not hold")
+                    : std::string("only tables (plain or compensated(<table>)) and the classic steppers without "
+                                  "history (euler, euler_cromer, euler_richardson, rk2, rk4) resume bit for bit"));
 }
 
 needs requirement_of(const method_spec& m) {

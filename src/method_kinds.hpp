@@ -21,6 +21,7 @@ struct method_spec {
     method_kind kind = method_kind::table;
     std::optional<table> coefficients;  // for kind == table and logh
     int extrapolation_columns = 0;      // extrapolated(<table or logh(table)>, k): k > 0
+    bool compensated = false;           // compensated(<table>): Kahan-summed updates
 };
 
 // What a system's equations offer a method.
@@ -58,6 +59,9 @@ template <template <class, class> class Stepper, needs Needs>
 struct classic_method {
     const char* name;
     const char* description;
+    // Carries a history between steps (a half-step momentum, the previous
+    // position): a checkpoint of the state alone cannot resume it bit for bit.
+    bool history = false;
     static constexpr needs requirement = Needs;
 };
 
@@ -66,17 +70,17 @@ struct classic_method {
 inline constexpr std::tuple classic_methods{
     classic_method<euler, needs::any>{"euler", "Euler, first order"},
     classic_method<euler_cromer, needs::any>{"euler_cromer", "Euler-Cromer (Gould & Tobochnik), first order, symplectic"},
-    classic_method<half_step, needs::any>{"half_step", "half-step algorithm (Gould & Tobochnik eq. 3.37)"},
+    classic_method<half_step, needs::any>{"half_step", "half-step algorithm (Gould & Tobochnik eq. 3.37)", true},
     classic_method<euler_richardson, needs::any>{"euler_richardson", "Euler-Richardson (Gould & Tobochnik eqs. 3.43-3.44)"},
     classic_method<rk2, needs::any>{"rk2", "midpoint Runge-Kutta (Sandvik's lecture notes) = euler_richardson"},
     classic_method<rk4, needs::any>{"rk4", "classic fourth-order Runge-Kutta (Sandvik's lecture notes)"},
-    classic_method<velocity_verlet, needs::any>{"velocity_verlet", "velocity Verlet (Gould & Tobochnik eq. 3.48)"},
+    classic_method<velocity_verlet, needs::any>{"velocity_verlet", "velocity Verlet (Gould & Tobochnik eq. 3.48)", true},
     classic_method<leapfrog_two_step, needs::newtonian>{"leapfrog_two_step",
-                                                        "two-step leapfrog (Gould & Tobochnik eq. 3.47)"},
+                                                        "two-step leapfrog (Gould & Tobochnik eq. 3.47)", true},
     classic_method<damped_leapfrog, needs::damped_split>{"damped_leapfrog",
-                                                         "leapfrog with velocity-dependent damping (Sandvik)"},
+                                                         "leapfrog with velocity-dependent damping (Sandvik)", true},
     classic_method<predictor_corrector, needs::any>{"predictor_corrector",
-                                                    "predictor-corrector (Gould & Tobochnik eqs. 3.69-3.70)"},
+                                                    "predictor-corrector (Gould & Tobochnik eqs. 3.69-3.70)", true},
 };
 
 // The names a scene may give beside the catalog's and its own [[table]]s
@@ -90,6 +94,10 @@ std::vector<std::string> method_names_beside_tables();
 // invalid_argument that says what is wrong.
 inline constexpr int max_extrapolation_columns = 12;
 std::optional<method_spec> resolve_method(const std::string& name, const std::map<std::string, table>& inline_tables);
+
+// Why a checkpointed run of `m` could not be resumed bit for bit ("" when it
+// can): tables, plain or compensated, and the classic steppers without history.
+std::string why_not_resumable(const method_spec& m);
 
 // What `m` needs of a system.
 needs requirement_of(const method_spec& m);

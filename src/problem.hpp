@@ -10,9 +10,19 @@
 #include <string>
 #include <vector>
 
+#include "checkpoint.hpp"
 #include "method_kinds.hpp"
 
 namespace sympl::app {
+
+// Checkpoints of the observed run (checkpoint.hpp): `save` is called every
+// `every_steps` steps with the record filled in but for the caller's part
+// (identity, trajectory bytes); `resume` continues a run from a record.
+struct checkpoint_hooks {
+    std::size_t every_steps = 0;  // 0: none
+    const checkpoint_record* resume = nullptr;
+    std::function<void(checkpoint_record&)> save;
+};
 
 struct run_request {
     double dt = 0;                        // fixed-step methods (logh: the fictitious step)
@@ -27,6 +37,7 @@ struct run_request {
     // Called with the current time every 2^18 steps of the observed run
     // (a terminal's progress line); empty: nothing.
     std::function<void(double t)> progress;
+    checkpoint_hooks checkpoint;  // tables and classic steppers without history
 };
 
 struct run_result {

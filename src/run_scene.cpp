@@ -1,7 +1,12 @@
 // The single-scene run.
 #include "run_scene.hpp"
 
+#include <signal.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <fstream>
 #include <iomanip>
 #include <memory>
 #include <optional>
@@ -62,7 +67,8 @@ std::string as_text(const scene& s, const outcome& o) {
     l << std::right << std::setw(10) << r.steps << " steps" << std::setw(12) << r.force_evaluations
       << " forces   energy error " << std::setw(10)
       << (r.max_energy_error >= 0 ? format_number(r.max_energy_error, 3) : "-") << "   final error " << std::setw(10)
-      << (o.final_error >= 0 ? format_number(o.final_error, 3) : "-") << "   " << format_number(r.seconds * 1e3, 3) << " ms";
+      << (o.final_error >= 0 ? format_number(o.final_error, 3) : "-") << "   "
+      << (r.seconds >= 0 ? format_number(r.seconds * 1e3, 3) + " ms" : std::string("(not timed)"));
     if (o.loop_area_error >= 0) l << "   loop area error " << format_number(o.loop_area_error, 3);
     if (s.output.final_state) {
         l << "\n    final state:";
@@ -71,9 +77,92 @@ std::string as_text(const scene& s, const outcome& o) {
     return l.str();
 }
 
+// One method's checkpoints: FILE.<method> and, when the scene writes a
+// trajectory, the rows so far in FILE.<method>.trajectory (the checkpoint
+// records how many bytes of it belong to the run).
+class checkpointed_method {
+public:
+    checkpointed_method(const scene& s, const scene_method& m, double dt, bool resume, std::string trajectory_header)
+        : s_(&s), m_(&m), dt_(dt), file_(s.checkpoint.file + "." + file_name_part(m.name)),
+          trajectory_file_(file_.string() + ".trajectory"), with_trajectory_(!trajectory_header.empty()) {
+        if (file_.has_parent_path()) fs::create_directories(file_.parent_path());
+        remove_stale_temporaries();
+        if (resume && fs::exists(file_)) from_ = read_checkpoint(file_, s.text_hash, m.name, dt);
+        if (!with_trajectory_) return;
+        if (from_) {
+            std::error_code ec;
+            const auto size = fs::file_size(trajectory_file_, ec);
+            if (ec || size < from_->trajectory_bytes)
+                throw error("checkpoint " + file_.string() + ": its trajectory " + trajectory_file_.string() +
+                            " is shorter than the " + std::to_string(from_->trajectory_bytes) +
+                            " bytes it recorded; not resumed from (remove both to start over)");
+            fs::resize_file(trajectory_file_, from_->trajectory_bytes);  // rows written after the checkpoint go
+            trajectory_.open(trajectory_file_, std::ios::binary | std::ios::app);
+        } else {
+            trajectory_.open(trajectory_file_, std::ios::binary | std::ios::trunc);
+            trajectory_ << trajectory_header;
+        }
+        trajectory_ << std::setprecision(17);
+        if (!trajectory_) throw error("cannot write " + trajectory_file_.string() + ": " + std::strerror(errno));
+    }
+
+    // Points the run at the checkpoint's trajectory and save/resume hooks.
+    void attach(run_request& rq) {
+        rq.checkpoint.every_steps = s_->checkpoint.every_steps;
+        rq.checkpoint.resume = from_ ? &*from_ : nullptr;
+        if (with_trajectory_) rq.trajectory = &trajectory_;
+        rq.checkpoint.save = [this](checkpoint_record& r) {
+            r.scene_hash = s_->text_hash;
+            r.method = m_->name;
+            r.dt = dt_;
+            if (with_trajectory_) {
+                trajectory_.flush();
+                if (!trajectory_) throw error("could not write " + trajectory_file_.string() + ": " + std::strerror(errno));
+                r.trajectory_bytes = std::uint64_t(trajectory_.tellp());
+            }
+            write_checkpoint(file_, r);
+        };
+    }
+
+    // The whole trajectory of the run, into the output file.
+    void copy_trajectory(std::ostream& out) {
+        trajectory_.close();
+        std::ifstream in(trajectory_file_, std::ios::binary);
+        out.seekp(0);  // the output file had only the header, which the checkpoint's file starts with too
+        out << in.rdbuf();
+    }
+
+    void remove() {
+        std::error_code ec;
+        fs::remove(file_, ec);
+        fs::remove(trajectory_file_, ec);
+    }
+
+    // FILE.<method>.part-PID of a process killed while writing a checkpoint.
+    void remove_stale_temporaries() const {
+        const std::string prefix = file_.filename().string() + ".part-";
+        std::error_code ec;
+        for (const auto& entry : fs::directory_iterator(file_.has_parent_path() ? file_.parent_path() : ".", ec)) {
+            const std::string name = entry.path().filename().string();
+            if (name.rfind(prefix, 0) != 0) continue;
+            const long pid = std::strtol(name.c_str() + prefix.size(), nullptr, 10);
+            if (pid > 0 && ::kill(pid_t(pid), 0) != 0 && errno == ESRCH) fs::remove(entry.path(), ec);
+        }
+    }
+
+private:
+    const scene* s_;
+    const scene_method* m_;
+    double dt_;
+    fs::path file_, trajectory_file_;
+    bool with_trajectory_;
+    std::optional<checkpoint_record> from_;
+    std::ofstream trajectory_;
+};
+
 }  // namespace
 
-void run_scene(const scene& s, bool json, std::ostream& out, double max_steps) {
+void run_scene(const scene& s, bool json, std::ostream& out, double max_steps, bool resume) {
     const problem p = problem_of(s);
     check_run_size(s, p, max_steps, false);
     // The reference resolves the steps this run takes (the first of each sweep).
@@ -88,32 +177,42 @@ void run_scene(const scene& s, bool json, std::ostream& out, double max_steps) {
     std::vector<outcome> outcomes;
     const progress bar;  // long runs show how far they are on a terminal
     std::vector<std::unique_ptr<atomic_file>> files;  // committed together at the end
+    std::vector<checkpointed_method> finished_checkpoints;
+    if (resume && !s.checkpoint.every_steps)
+        throw scene_error(s.source + ": --resume, but the scene has no checkpoint = {every_steps = N, file = \"...\"}");
     for (const scene_method& m : s.methods) {
         run_request rq;
         rq.dt = sweep_of(s, m).front();
         rq.tolerance = rq.dt;
         rq.energy = s.output.energy_error && p.hamiltonian;
-        rq.timing_repeats = 1;
+        rq.timing_repeats = s.checkpoint.every_steps ? 0 : 1;  // a checkpointed run is not timed a second time
         if (bar.tty)
             rq.progress = [&](double t) {
                 bar.show("  " + m.name + ": t = " + format_number(t, 6) + " of " + format_number(s.t_end, 6) + " (" +
                          format_number(100 * (t - s.t0) / (s.t_end - s.t0), 3) + "%)");
             };
         std::unique_ptr<atomic_file> trajectory;
+        std::vector<std::string> header{"t"};
+        for (const char* coordinate : {"q", "p"})
+            for (std::size_t i = 0; i < p.degrees_of_freedom; ++i) header.push_back(coordinate + std::to_string(i));
         if (s.output.trajectory_every) {
             trajectory = std::make_unique<atomic_file>(dir / (file_name_part(s.name) + "_" + file_name_part(m.name) +
                                                               "_trajectory.csv"));
-            std::vector<std::string> header{"t"};
-            for (const char* coordinate : {"q", "p"})
-                for (std::size_t i = 0; i < p.degrees_of_freedom; ++i) header.push_back(coordinate + std::to_string(i));
             trajectory->stream() << csv_line(header) << std::setprecision(17);
             rq.trajectory = &trajectory->stream();
             rq.trajectory_every = s.output.trajectory_every;
         }
+        std::optional<checkpointed_method> checkpoints;
+        if (s.checkpoint.every_steps) {
+            checkpoints.emplace(s, m, rq.dt, resume, trajectory ? csv_line(header) : std::string());
+            checkpoints->attach(rq);
+        }
         outcome o{&m, p.run(m, rq, s.t0, s.t_end, p.x0)};
+        if (checkpoints && trajectory) checkpoints->copy_trajectory(trajectory->stream());
         if (trajectory && !o.r.stable)  // a comment line (gnuplot and CSV readers with '#' comments skip it)
             trajectory->stream() << "# truncated: " << o.r.failure << "\n";
         if (trajectory) files.push_back(std::move(trajectory));
+        if (checkpoints) finished_checkpoints.push_back(std::move(*checkpoints));
         if (o.r.stable && ref.failure.empty()) o.final_error = relative_difference(o.r.final_state, ref.x);
         if (o.r.stable && s.output.loop_area) o.loop_area_error = loop_area_error(p, m, rq, s.t0, s.t_end);
         outcomes.push_back(std::move(o));
@@ -121,6 +220,7 @@ void run_scene(const scene& s, bool json, std::ostream& out, double max_steps) {
     bar.done();
     for (auto& f : files) f->commit();
     if (outputs) outputs->commit();
+    for (checkpointed_method& c : finished_checkpoints) c.remove();  // the run is complete: nothing to resume
     if (json) {
         nlohmann::json all = nlohmann::json::array();
         for (const outcome& o : outcomes) all.push_back(as_json(s, o, ref));

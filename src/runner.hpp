@@ -198,9 +198,21 @@ private:
             ++step;
         };
         if (energy) r.max_energy_error = 0;
+        // A resumed run continues the observer where the checkpoint left it;
+        // a checkpoint carries the observer's maximum so far.
+        run_request with_checkpoints = rq;
+        if (const checkpoint_record* from = rq.checkpoint.resume) {
+            step = from->step + 1;
+            r.max_energy_error = from->max_energy_error;
+        }
+        if (rq.checkpoint.save)
+            with_checkpoints.checkpoint.save = [&](checkpoint_record& record) {
+                record.max_energy_error = r.max_energy_error;
+                rq.checkpoint.save(record);
+            };
         State x = to_state<Dim>(x0);
         try {
-            const auto [steps, forces] = drive(m, rq, t0, t_end, x, observe, true);
+            const auto [steps, forces] = drive(m, with_checkpoints, t0, t_end, x, observe, true);
             r.steps = steps;
             r.force_evaluations = forces;
             r.final_state = to_vector(x);
@@ -220,6 +232,7 @@ private:
                                                 State& x, Observer&& obs, bool observed) const {
         const auto with_driver = [&](auto stepper) -> std::pair<std::size_t, std::uint64_t> {
             run_summary s;
+            if (observed && rq.checkpoint.every_steps) return checkpointed(stepper, rq, t0, t_end, x, obs);
             if (observed)
                 s = integrate_until(stepper, x, t0, t_end, rq.dt, obs);
             else
@@ -229,7 +242,7 @@ private:
         switch (m.kind) {
             case method_kind::table:
                 if constexpr (meets<needs::separable_hamiltonian, Sys>()) {
-                    splitting_stepper<Sys, State> stepper(sys_, *m.coefficients);
+                    splitting_stepper<Sys, State> stepper(sys_, *m.coefficients, {m.compensated});
                     if (m.extrapolation_columns > 0)
                         return with_driver(extrapolation_stepper(std::move(stepper), m.extrapolation_columns));
                     return with_driver(std::move(stepper));
@@ -257,6 +270,67 @@ private:
                                        obs, observed);
         }
         throw invalid_argument("method '" + m.name + "' is of an unknown kind");
+    }
+
+    // The observed run with a checkpoint every rq.checkpoint.every_steps steps,
+    // or its continuation from rq.checkpoint.resume: the driver resumes at the
+    // checkpoint's step (times from the integer index), the stepper from its
+    // saved memory, so the rest of the run is bit for bit the uninterrupted one.
+    template <class Stepper, class Observer>
+    std::pair<std::size_t, std::uint64_t> checkpointed(Stepper& stepper, const run_request& rq, double t0,
+                                                       double t_end, State& x, Observer& obs) const {
+        constexpr bool has_memory = requires { stepper.memory(); };
+        const checkpoint_record* from = rq.checkpoint.resume;
+        run_options options;
+        std::uint64_t forces_before = 0, velocities_before = 0;
+        if (from) {
+            x = to_state<Dim>(from->state);
+            if constexpr (has_memory) {
+                using vector = typename State::vector;
+                const auto as_vector = [](const std::vector<double>& v) {
+                    return vector(Eigen::Map<const Eigen::VectorXd>(v.data(), Eigen::Index(v.size())));
+                };
+                stepper_memory<vector> memory{as_vector(from->force), as_vector(from->velocity), as_vector(from->q_error),
+                                              as_vector(from->p_error), from->force_fresh, from->velocity_fresh,
+                                              from->force_evaluations, from->velocity_evaluations};
+                stepper.restore(memory);
+            }
+            forces_before = from->force_evaluations;
+            velocities_before = from->velocity_evaluations;
+            options.first_step = from->step;
+        }
+        std::size_t done = options.first_step;
+        bool at_start = options.first_step == 0;  // the observer's first call is t0, not a step
+        const auto observe = [&](const State& y, double t) {
+            obs(y, t);
+            if (at_start) {
+                at_start = false;
+                return;
+            }
+            ++done;
+            if (done % rq.checkpoint.every_steps != 0 || t == t_end) return;
+            checkpoint_record record;
+            record.step = done;
+            record.state = to_vector(y);
+            if constexpr (has_memory) {
+                const auto memory = stepper.memory();
+                const auto as_std = [](const auto& v) { return std::vector<double>(v.data(), v.data() + v.size()); };
+                record.force = as_std(memory.force);
+                record.velocity = as_std(memory.velocity);
+                record.q_error = as_std(memory.q_error);
+                record.p_error = as_std(memory.p_error);
+                record.force_fresh = memory.force_fresh;
+                record.velocity_fresh = memory.velocity_fresh;
+                record.force_evaluations = memory.force_evaluations;
+                record.velocity_evaluations = memory.velocity_evaluations;
+            } else {
+                record.force_evaluations = forces_before + stepper.force_evaluations();
+                record.velocity_evaluations = velocities_before + stepper.velocity_evaluations();
+            }
+            rq.checkpoint.save(record);
+        };
+        const run_summary s = integrate_until(stepper, x, t0, t_end, rq.dt, observe, options);
+        return {options.first_step + s.steps, forces_before + s.force_evaluations};
     }
 
     [[noreturn]] static void diverged(const std::string& what, std::size_t step, double t) {

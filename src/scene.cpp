@@ -111,7 +111,7 @@ scene_method method_by_name(const reader& r, const toml::node& n, const std::map
     }
     if (!m)
         r.fail(*name_node, "unknown method '" + name + "'; expected a catalog name (sympl tables), an inline [[table]], "
-                           "logh(<table>), extrapolated(<table>, k), or one of: " + join(method_names_beside_tables()));
+                           "logh(<table>), extrapolated(<table>, k), compensated(<table>), or one of: " + join(method_names_beside_tables()));
     scene_method sm{*m, {}, {}};
     if (t && t->get("dt")) sm.dt = r.sweep(*t->get("dt"), "dt");
     if (t && t->get("tolerances")) sm.tolerances = r.sweep(*t->get("tolerances"), "tolerances");
@@ -159,7 +159,7 @@ scene parse_scene(const std::string& text, const std::string& source, bool quick
         r.fail(e.source(), "not valid TOML: " + std::string(e.description()));
     }
     r.only_keys(doc, {"name", "system", "parameters", "initial", "methods", "table", "dt", "tolerances", "t0", "t_end",
-                      "output", "quick"},
+                      "output", "quick", "checkpoint"},
                 "the scene");
     // [quick]: what `--quick` changes (a shorter span, a shorter sweep).
     const toml::table* quick_table = nullptr;
@@ -174,6 +174,7 @@ scene parse_scene(const std::string& text, const std::string& source, bool quick
     };
     scene s;
     s.source = source;
+    s.text_hash = fnv1a_hex(text);
     const toml::source_region top{{1, 1}, {1, 1}, nullptr};
     s.name = doc.get("name") ? r.string(*doc.get("name"), "name") : source;
 
@@ -255,6 +256,22 @@ scene parse_scene(const std::string& text, const std::string& source, bool quick
             if (!k || !n->is_integer() || *k < 0) r.fail(*n, "'output.trajectory_every' must be an integer >= 0");
             s.output.trajectory_every = std::size_t(*k);
         }
+    }
+    if (const toml::node* c = doc.get("checkpoint")) {
+        const toml::table* t = c->as_table();
+        if (!t) r.fail(*c, "'checkpoint' must be a table {every_steps = N, file = \"...\"}");
+        r.only_keys(*t, {"every_steps", "file"}, "'checkpoint'");
+        const toml::node* every = t->get("every_steps");
+        const toml::node* file = t->get("file");
+        if (!every || !file) r.fail(*c, "'checkpoint' needs every_steps and file");
+        const auto n = every->value<std::int64_t>();
+        if (!every->is_integer() || !n || *n < 1 || *n > std::int64_t(1e15))
+            r.fail(*every, "'checkpoint.every_steps' must be an integer in [1, 1e15]");
+        s.checkpoint.every_steps = std::size_t(*n);
+        s.checkpoint.file = r.string(*file, "checkpoint.file");
+        if (s.checkpoint.file.empty()) r.fail(*file, "'checkpoint.file' is empty; expected a file name");
+        for (std::size_t k = 0; k < s.methods.size(); ++k)
+            if (const std::string why = why_not_resumable(s.methods[k]); !why.empty()) r.fail(*ma->get(k), why);
     }
     return s;
 }

@@ -12,6 +12,7 @@
 #include <sympl/error.hpp>
 #include <sympl/table.hpp>
 
+#include "checkpoint.hpp"
 #include "method_kinds.hpp"
 #include "problem.hpp"
 
@@ -32,8 +33,17 @@ struct scene_method : method_spec {
     std::vector<double> dt, tolerances;  // empty: the scene's
 };
 
+// `checkpoint = {every_steps = N, file = "..."}`: a run saves where it is every
+// N steps (checkpoint.hpp), one file per method: FILE.<method>, with the
+// trajectory written so far beside it (FILE.<method>.trajectory).
+struct checkpoint_spec {
+    std::size_t every_steps = 0;  // 0: no checkpoints
+    std::string file;
+};
+
 struct scene {
     std::string source;  // file path, or "built-in"
+    std::string text_hash;  // of the scene file's text: what a checkpoint belongs to
     std::string name;
     std::string system;
     std::map<std::string, double> parameters;
@@ -44,6 +54,7 @@ struct scene {
     double t0 = 0;
     double t_end = 0;
     output_spec output;
+    checkpoint_spec checkpoint;
 };
 
 // A scene file that cannot be read: "file:line:column: what; expected ...".

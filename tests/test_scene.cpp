@@ -60,7 +60,7 @@ TEST_CASE("scene: errors name the file, line and column and what was expected") 
         return text;
     };
     CHECK(error_of(replace(good, "t_end = 6.283185307179586", "t_end = 6.2\nstep = 3")) ==
-          "scene.toml:7:8: unknown key 'step' in the scene; expected one of: dt, initial, methods, name, output, "
+          "scene.toml:7:8: unknown key 'step' in the scene; expected one of: checkpoint, dt, initial, methods, name, output, "
           "parameters, quick, system, t0, t_end, table, tolerances");
     CHECK(error_of(replace(good, "\"kepler\"\nparameters", "\"kepplr\"\nparameters")).rfind("scene.toml:2:10: unknown system 'kepplr'", 0) == 0);
     CHECK(error_of(replace(good, "\"rk4\"", "\"rk5\"")).rfind("scene.toml:4:36: unknown method 'rk5'", 0) == 0);
@@ -140,4 +140,22 @@ TEST_CASE("scene: an initial state of infinite energy is refused, not reported a
     CHECK(error_of_initial("kepler", "{q = [0, 0], p = [0, 1]}") ==
           "x.toml: the initial state of kepler has energy H = -inf; expected a state of finite energy");
     CHECK(error_of_initial("kepler", "{q = [1, 0], p = [0, 1]}") == "accepted");
+}
+
+TEST_CASE("scene: checkpoints are for methods that resume bit for bit, others are refused where they are named") {
+    const std::string head = "system = \"kepler\"\ndt = 0.1\nt_end = 1\ncheckpoint = {every_steps = 100, file = \"c\"}\n";
+    const scene s = parse_scene(head + "methods = [\"leapfrog_kdk\", \"compensated(yoshida_6)\", \"rk4\"]\n", "c.toml");
+    CHECK(s.checkpoint.every_steps == 100);
+    CHECK(s.methods[1].compensated);
+    for (const std::string m : {"velocity_verlet", "logh(leapfrog_dkd)", "odeint_rk4", "extrapolated(leapfrog_kdk, 3)"}) {
+        CAPTURE(m);
+        const std::string e = error_of(head + "methods = [\"rk4\", \"" + m + "\"]\n");
+        CAPTURE(e);
+        CHECK(e.rfind("scene.toml:5:19: method '" + m + "' cannot be checkpointed", 0) == 0);
+    }
+    CHECK(error_of("system = \"kepler\"\ndt = 0.1\nt_end = 1\nmethods = [\"rk4\"]\ncheckpoint = {every_steps = 0, file = \"c\"}\n") ==
+          "scene.toml:5:29: 'checkpoint.every_steps' must be an integer in [1, 1e15]");
+    // A different scene text is a different scene for its checkpoints.
+    CHECK(parse_scene(head + "methods = [\"rk4\"]\n", "a.toml").text_hash !=
+          parse_scene(head + "methods = [\"rk4\"] \n", "a.toml").text_hash);
 }

@@ -1,0 +1,50 @@
+#pragma once
+// Checkpoints of a run (`checkpoint = {every_steps = N, file = "..."}` in a
+// scene; `sympl run SCENE --resume`): after every N steps, everything the run
+// needs to continue bit for bit: the step index (time is t0 + i dt from it),
+// the state, the stepper's carried memory (stepper_memory), the counters, the
+// observed maximum energy error and how many bytes of the trajectory are
+// written. Numbers are stored as hexadecimal floats, exactly.
+//
+// A file is written under a temporary name, flushed to disk (fsync) and
+// renamed over the previous one: a crash leaves the old checkpoint or the new,
+// never half of one. It carries a format version, the scene it belongs to (a
+// hash of the scene file's text), the method, dt and a checksum; a truncated,
+// corrupted or mismatched file is refused with the reason, never resumed from.
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace sympl::app {
+
+struct checkpoint_record {
+    // What the checkpoint belongs to: checked on reading.
+    std::string scene_hash, method;
+    double dt = 0;
+    // Where the run is.
+    std::size_t step = 0;  // steps done
+    std::vector<double> state;  // q then p
+    // splitting_stepper's memory (empty for classic steppers).
+    std::vector<double> force, velocity, q_error, p_error;
+    bool force_fresh = false, velocity_fresh = false;
+    std::uint64_t force_evaluations = 0, velocity_evaluations = 0;
+    // The observer's part.
+    double max_energy_error = -1;
+    std::uint64_t trajectory_bytes = 0;
+};
+
+inline constexpr int checkpoint_format = 1;
+
+// FNV-1a, 64 bits, as 16 hex digits: the scene's identity and the file's checksum.
+std::string fnv1a_hex(const std::string& bytes);
+
+void write_checkpoint(const std::filesystem::path& file, const checkpoint_record& r);
+
+// The record in `file`, checked against the scene, method and dt expected;
+// a checkpoint_error says what is wrong.
+checkpoint_record read_checkpoint(const std::filesystem::path& file, const std::string& scene_hash,
+                                  const std::string& method, double dt);
+
+}  // namespace sympl::app
