@@ -23,21 +23,29 @@ trajectory_every = 100
 final_state = true
 directory = "out"
 TOML
+start=$(date +%s%N)
 "$program" run scene.toml > whole.txt || fail "the uninterrupted run failed"
+whole_ms=$(( ($(date +%s%N) - start) / 1000000 ))
+RANDOM=20261122  # the kill times are random, in the same pattern in every run of the test
+# Kill times scale with how long the whole run takes on this build (a
+# sanitizer build is ten times slower): between 1/20 and 1/20 + 1/8 of it.
+kill_after() {
+    local ms=$(( whole_ms / 20 + RANDOM % (whole_ms / 8 + 1) ))
+    printf '%d.%03d' $((ms / 1000)) $((ms % 1000))
+}
 mkdir whole && mv out/*.csv whole/ || fail "no trajectories"
 [ -z "$(ls -A state)" ] || fail "a finished run left checkpoints: $(ls state)"
 
 "$program" run scene.toml > /dev/null 2>&1 &
 pid=$!
-sleep 0.3
+sleep "$(kill_after)"
 kill -s KILL "$pid" 2> /dev/null
 wait "$pid" 2> /dev/null
 kills=1
-RANDOM=20261122  # the kill times are random but the same in every run of the test
 while true; do
     "$program" run scene.toml --resume > resumed.txt 2> err.txt &
     pid=$!
-    sleep "0.$((RANDOM % 5 + 1))"
+    sleep "$(kill_after)"
     if kill -s KILL "$pid" 2> /dev/null; then
         wait "$pid" 2> /dev/null
         kills=$((kills + 1))
@@ -52,4 +60,4 @@ for f in whole/*.csv; do
     cmp "$f" "out/$(basename "$f")" || fail "$(basename "$f") differs"
 done
 [ -z "$(ls -A state)" ] || fail "checkpoints left after the resumed run finished: $(ls -A state)"
-echo "killed $kills times with SIGKILL and resumed: summary and $(ls whole | wc -l) trajectories byte-identical"
+echo "killed $kills times with SIGKILL (whole run: $whole_ms ms) and resumed: summary and $(ls whole | wc -l) trajectories byte-identical"
