@@ -1,12 +1,16 @@
 #pragma once
 // sympl: symplectic splitting methods for separable Hamiltonians. Everything
 // but the Boost.Odeint interop (odeint.hpp), which pulls in all of Odeint, and
-// the 113-bit order measurement (table_order.hpp), which pulls in Boost.Multiprecision.
+// the 113-bit order measurement (table_order.hpp), which pulls in Boost.Multiprecision,
+// and ensembles over MPI ranks (ensemble_mpi.hpp), which need Boost.MPI.
 #include "adaptive.hpp"
+#include "batch.hpp"
 #include "catalog.hpp"
+#include "chaos_indicator.hpp"
 #include "classic_steppers.hpp"
 #include "convergence.hpp"
 #include "dual.hpp"
+#include "ensemble.hpp"
 #include "equations_of_motion.hpp"
 #include "extrapolation.hpp"
 #include "error.hpp"
