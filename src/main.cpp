@@ -21,6 +21,8 @@
 #include <sympl/table_order.hpp>
 
 #include "coefficient_list.hpp"
+#include "ensemble_run.hpp"
+#include "mpi_exchange.hpp"
 #include "format.hpp"
 #include "interrupt.hpp"
 #include "report.hpp"
@@ -198,6 +200,16 @@ int main(int argc, char** argv) {
     report->add_flag("--no-plots", [&](std::int64_t) { report_options.plots = false; }, "skip the gnuplot PNGs");
     max_steps_option(report, report_options.max_steps);
 
+    auto* ensemble = app.add_subcommand("ensemble", "Run a scene's [ensemble] (grid or CSV of states): threads, MPI ranks");
+    std::string ensemble_file, ensemble_out = "sympl-ensemble";
+    int ensemble_threads = 0;
+    double ensemble_max_steps = sympl::app::default_max_steps;
+    ensemble->add_option("scene", ensemble_file, "scene file (TOML) with an [ensemble] table")->required();
+    ensemble->add_option("--out", ensemble_out, "output directory (default sympl-ensemble)");
+    ensemble->add_option("--threads", ensemble_threads, "threads per process (default: OMP_NUM_THREADS, else every core)")
+        ->check(CLI::Range(1, 1024));
+    max_steps_option(ensemble, ensemble_max_steps);
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {
@@ -210,6 +222,9 @@ int main(int argc, char** argv) {
         if (*tables) print_tables(tables_json);
         if (*systems) print_systems(systems_json);
         if (*check) return check_table(kick, drift, convention, check_json);
+        if (*ensemble)
+            sympl::app::ensemble_command(sympl::app::load_scene(ensemble_file), ensemble_out, ensemble_threads,
+                                         ensemble_max_steps, sympl::app::process_exchange(), std::cout);
         if (*run) sympl::app::run_scene(sympl::app::load_scene(scene_file), run_json, std::cout, max_steps, resume);
         if (*report) {
             std::vector<sympl::app::scene> scenes;

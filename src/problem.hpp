@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -54,6 +55,27 @@ struct run_result {
     std::vector<std::pair<double, double>> energy_series;
 };
 
+// An ensemble of one system (ensemble.hpp): one table, one dt, many starts.
+struct ensemble_request {
+    std::optional<table> method;
+    double t0 = 0, dt = 0;
+    std::size_t steps = 0;
+    std::size_t sample_every = 1;
+    bool megno = false;
+    double divergence = 1e3;  // as the program's single runs: an energy error beyond it is a blow-up
+    int threads = 0;
+};
+
+struct ensemble_row {
+    bool stable = true;
+    std::size_t blowup_step = 0;
+    double blowup_time = 0;
+    std::string failure;
+    double max_energy_error = -1;
+    double megno = 0;
+    std::vector<double> final_state;  // q then p
+};
+
 struct problem {
     std::string system;
     bool hamiltonian = true;  // has an energy to watch
@@ -66,6 +88,13 @@ struct problem {
     std::function<run_result(const method_spec&, const run_request&, double t0, double t_end,
                              const std::vector<double>& x0)>
         run;
+    // The ensemble runner (separable Hamiltonians only; empty otherwise).
+    std::function<std::vector<ensemble_row>(const ensemble_request&, const std::vector<std::vector<double>>& starts)>
+        ensemble;
+    // Upward crossings of q1 = 0 (a Poincare section) of `steps` steps of dt
+    // from x0, as stacked states (separable Hamiltonians only).
+    std::function<std::vector<std::vector<double>>(const table&, double dt, std::size_t steps, const std::vector<double>& x0)>
+        section;
     // A reference at t_end from Sofroniou-Spaletta 10 in long double with step dt.
     std::function<std::vector<double>(double t0, double t_end, double dt, const std::vector<double>& x0)> reference;
 };

@@ -14,6 +14,7 @@
 
 #include "format.hpp"
 #include "loop_area.hpp"
+#include "ensemble_run.hpp"
 #include "output_set.hpp"
 #include "reference.hpp"
 #include "studies/study.hpp"
@@ -260,6 +261,18 @@ void run_report(const std::vector<scene>& scenes, const report_options& options,
     const bool plots = options.plots && have_gnuplot();
     if (plots) plot_work_precision(rows, scenes, dir);
     energy_series_study(scenes, dir, plots);
+    // Scenes with an [ensemble] (the Henon-Heiles chaos map) run it too, on this process's threads.
+    std::vector<std::string> ensemble_files;
+    for (const scene& s : scenes)
+        if (s.ensemble) {
+            bar.show(s.name + ": ensemble of " + std::to_string(s.ensemble->size()) + " trajectories");
+            const std::string prefix = file_name_part(s.name) + "_";
+            const ensemble_outcome e = run_ensemble_scene(s, dir, prefix, 0, options.max_steps, plots, exchange{});
+            md << e.summary;
+            ensemble_files.insert(ensemble_files.end(), e.files.begin(), e.files.end());
+            table << s.name << ": " << e.trajectories << " trajectories, " << e.chaotic << " chaotic, " << e.invalid
+                  << " invalid\n";
+        }
     if (options.studies) {
         const study_context c{options.quick, md, dir, bar};
         stability_study(c);
@@ -270,7 +283,9 @@ void run_report(const std::vector<scene>& scenes, const report_options& options,
     md << "## Files\n\nwork_precision.csv (every run; unstable runs give the step and time of blow-up and no error "
           "numbers), energy_vs_time.csv"
        << (plots ? ", work_precision.png, energy_vs_time.png" : " (install gnuplot for the PNGs)")
-       << (options.studies ? ", stability.csv, kepler_e0.99.csv, long_run.csv, extreme_scales.csv" : "") << ".\n";
+       << (options.studies ? ", stability.csv, kepler_e0.99.csv, long_run.csv, extreme_scales.csv" : "");
+    for (const auto& f : ensemble_files) md << ", " << f;
+    md << ".\n";
     atomic_file summary(dir / "summary.md");
     summary.stream() << md.str();
     summary.commit();

@@ -470,6 +470,33 @@ problem model(Sys sys, std::vector<double> x0, std::function<std::vector<double>
             integrate_until(ss, y, (long double)t0, (long double)t_end, (long double)dt);
             return to_vector(y);
         };
+        p.ensemble = [sys](const ensemble_request& rq, const std::vector<std::vector<double>>& starts) {
+            using S = detail::state_of<Dim>;
+            std::vector<S> states;
+            states.reserve(starts.size());
+            for (const auto& x : starts) states.push_back(from_stacked<S>(x));
+            ensemble_options o;
+            o.t0 = rq.t0;
+            o.dt = rq.dt;
+            o.steps = rq.steps;
+            o.sample_every = rq.sample_every;
+            o.megno = rq.megno;
+            o.divergence = rq.divergence;
+            o.threads = rq.threads;
+            std::vector<ensemble_row> rows;
+            rows.reserve(starts.size());
+            for (const auto& r : run_ensemble(sys, *rq.method, states, o))
+                rows.push_back({r.stable, r.blowup_step, r.blowup_time, r.failure, r.max_energy_error, r.megno,
+                                to_vector(r.final_state)});
+            return rows;
+        };
+        p.section = [sys](const table& m, double dt, std::size_t steps, const std::vector<double>& x0) {
+            using S = detail::state_of<Dim>;
+            splitting_stepper<Sys, S> stepper(sys, m);
+            std::vector<std::vector<double>> points;
+            for (const S& c : section_crossings(stepper, from_stacked<S>(x0), dt, steps)) points.push_back(to_vector(c));
+            return points;
+        };
     } else {
         p.reference = [sys](double t0, double t_end, double dt, const std::vector<double>& x) {
             State y = from_stacked<State>(x);

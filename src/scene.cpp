@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -148,7 +149,81 @@ void read_inline_table(const reader& r, const toml::node& e, std::map<std::strin
     }
 }
 
+// [ensemble]: a grid over the system's parameters or a CSV of states, one
+// table, one dt. Counts are range-checked here; grid points that are not
+// valid states become rows of status `invalid` when the ensemble runs.
+ensemble_spec read_ensemble(const reader& r, const toml::node& node, const scene& s, const system_entry& entry,
+                            const toml::array& methods) {
+    const toml::table* t = node.as_table();
+    if (!t) r.fail(node, "'ensemble' must be a table with grid (or states) and indicator");
+    r.only_keys(*t, {"grid", "states", "indicator", "sample_every", "orbits"}, "[ensemble]");
+    ensemble_spec e;
+    const auto integer = [&](const toml::node& n, const std::string& key, std::int64_t low, std::int64_t high) {
+        const auto v = n.value<std::int64_t>();
+        if (!n.is_integer() || !v || *v < low || *v > high)
+            r.fail(n, "'" + key + "' must be an integer in [" + std::to_string(low) + ", " + std::to_string(high) + "]");
+        return std::size_t(*v);
+    };
+    const toml::node* grid = t->get("grid");
+    const toml::node* states = t->get("states");
+    if (!grid == !states) r.fail(node, "[ensemble] needs either grid = {name = {from, to, count}, ...} or states = \"file.csv\"");
+    if (grid) {
+        const toml::table* g = grid->as_table();
+        if (!g || g->empty()) r.fail(*grid, "'ensemble.grid' must be a table of {from, to, count} per parameter");
+        std::set<std::string> known;
+        for (const auto& q : entry.parameters) known.insert(q.name);
+        r.only_keys(*g, known, "ensemble.grid of " + s.system);
+        std::vector<std::pair<toml::source_position, ensemble_axis>> axes;
+        for (const auto& [key, n] : *g) {
+            const std::string name(key.str());
+            const toml::table* a = n.as_table();
+            if (!a) r.fail(n, "'ensemble.grid." + name + "' must be {from = ..., to = ..., count = ...}");
+            r.only_keys(*a, {"from", "to", "count"}, "ensemble.grid." + name);
+            if (!a->get("from") || !a->get("to") || !a->get("count"))
+                r.fail(n, "'ensemble.grid." + name + "' needs from, to and count");
+            ensemble_axis axis{name, r.number(*a->get("from"), name + ".from"), r.number(*a->get("to"), name + ".to"),
+                               integer(*a->get("count"), name + ".count", 1, 1000000)};
+            if (!std::isfinite(axis.from) || !std::isfinite(axis.to))
+                r.fail(n, "'ensemble.grid." + name + "' from = " + shortest(axis.from) + ", to = " + shortest(axis.to) +
+                              "; expected finite numbers");
+            axes.emplace_back(n.source().begin, axis);
+        }
+        // toml++ keeps keys sorted: the file's order comes from their positions.
+        std::sort(axes.begin(), axes.end(), [](const auto& a, const auto& b) {
+            return std::pair(a.first.line, a.first.column) < std::pair(b.first.line, b.first.column);
+        });
+        for (auto& [where, axis] : axes) e.grid.push_back(axis);
+        double total = 1;
+        for (const auto& axis : e.grid) total *= double(axis.count);
+        if (total > max_ensemble_size)
+            r.fail(*grid, "the grid has " + shortest(total) + " points; expected at most " + shortest(max_ensemble_size));
+    } else {
+        e.states_file = r.string(*states, "ensemble.states");
+        if (e.states_file.empty()) r.fail(*states, "'ensemble.states' is empty; expected a CSV file name");
+        if (!s.source.empty() && s.source != "built-in" && std::filesystem::path(e.states_file).is_relative())
+            e.states_file = (std::filesystem::path(s.source).parent_path() / e.states_file).string();
+    }
+    if (const toml::node* i = t->get("indicator")) {
+        const std::string v = r.string(*i, "ensemble.indicator");
+        if (v != "megno" && v != "none") r.fail(*i, "ensemble.indicator = '" + v + "'; expected \"megno\" or \"none\"");
+        e.megno = v == "megno";
+    }
+    if (const toml::node* k = t->get("sample_every")) e.sample_every = integer(*k, "ensemble.sample_every", 1, 1000000000);
+    if (const toml::node* k = t->get("orbits")) e.orbits = integer(*k, "ensemble.orbits", 0, 100);
+    if (s.methods.size() != 1 || s.methods[0].kind != method_kind::table || s.methods[0].compensated ||
+        s.methods[0].extrapolation_columns > 0)
+        r.fail(methods, "an ensemble runs one splitting table; expected methods = [\"<table>\"] (one catalog or [[table]] name)");
+    if (s.dt.size() != 1) r.fail(node, "an ensemble runs one step size; expected dt = <number>, not a sweep");
+    return e;
+}
+
 }  // namespace
+
+std::size_t ensemble_spec::size() const {
+    std::size_t n = 1;
+    for (const auto& a : grid) n *= a.count;
+    return n;
+}
 
 scene parse_scene(const std::string& text, const std::string& source, bool quick) {
     const reader r{source};
@@ -159,7 +234,7 @@ scene parse_scene(const std::string& text, const std::string& source, bool quick
         r.fail(e.source(), "not valid TOML: " + std::string(e.description()));
     }
     r.only_keys(doc, {"name", "system", "parameters", "initial", "methods", "table", "dt", "tolerances", "t0", "t_end",
-                      "output", "quick", "checkpoint"},
+                      "output", "quick", "checkpoint", "ensemble"},
                 "the scene");
     // [quick]: what `--quick` changes (a shorter span, a shorter sweep).
     const toml::table* quick_table = nullptr;
@@ -273,6 +348,7 @@ scene parse_scene(const std::string& text, const std::string& source, bool quick
         for (std::size_t k = 0; k < s.methods.size(); ++k)
             if (const std::string why = why_not_resumable(s.methods[k]); !why.empty()) r.fail(*ma->get(k), why);
     }
+    if (const toml::node* e = doc.get("ensemble")) s.ensemble = read_ensemble(r, *e, s, entry, *ma);
     return s;
 }
 

@@ -41,6 +41,25 @@ struct checkpoint_spec {
     std::string file;
 };
 
+// `[ensemble]`: the scene's set-up run over a grid of its system's parameters
+// (each {from, to, count}; the first in the file varies slowest) or over the
+// initial states of a CSV file, with what to compute (ensemble_run.hpp).
+struct ensemble_axis {
+    std::string name;
+    double from = 0, to = 0;
+    std::size_t count = 1;
+    double value(std::size_t i) const { return count == 1 ? from : from + (to - from) * double(i) / double(count - 1); }
+};
+struct ensemble_spec {
+    std::vector<ensemble_axis> grid;  // empty: states_file
+    std::string states_file;          // columns q1..qn, p1..pn; relative to the scene file
+    bool megno = false;               // indicator = "megno" (or "none")
+    std::size_t sample_every = 10;    // energy error and MEGNO sampled every k steps
+    std::size_t orbits = 0;           // a Poincare section (q1 = 0, p1 > 0) of this many orbits of the grid
+    std::size_t size() const;         // trajectories
+};
+inline constexpr double max_ensemble_size = 1e7;
+
 struct scene {
     std::string source;  // file path, or "built-in"
     std::string text_hash;  // of the scene file's text: what a checkpoint belongs to
@@ -55,6 +74,7 @@ struct scene {
     double t_end = 0;
     output_spec output;
     checkpoint_spec checkpoint;
+    std::optional<ensemble_spec> ensemble;
 };
 
 // A scene file that cannot be read: "file:line:column: what; expected ...".

@@ -43,6 +43,11 @@ parameter count(std::string name, double value, double low, std::string meaning)
     return {std::move(name), value, low, largest_chain, false, false, true, std::move(meaning)};
 }
 
+parameter of_initial_state(parameter p) {
+    p.initial_state = true;
+    return p;
+}
+
 using V1 = Eigen::Matrix<double, 1, 1>;
 using S1 = phase_space<double, 1>;
 
@@ -69,7 +74,7 @@ const std::vector<system_entry>& registry() {
         {"kepler",
          "H = |p|^2/2 - mu/|q| (Hairer, Lubich & Wanner, GNI ch. I.2.3), plane orbit from pericentre; exact for mu = 1",
          {positive("mu", 1, "G M; give mu or scale, not both"),
-          {"eccentricity", 0.5, 0, 1, false, true, false, "orbit eccentricity e"},
+          of_initial_state({"eccentricity", 0.5, 0, 1, false, true, false, "orbit eccentricity e"}),
           positive("scale", 1, "length unit L: q -> L q, p -> L p, mu -> mu L^3 (the same orbit in other units)")},
          true,
          [](const parameter_values& v) {
@@ -89,9 +94,10 @@ const std::vector<system_entry>& registry() {
          },
          true},
         {"kepler_3d", "the Kepler orbit turned into space by the classical angles (mu = 1); exact",
-         {{"eccentricity", 0.5, 0, 1, false, true, false, "orbit eccentricity e"},
-          any("inclination", 0.3, "rad"), any("node", 0.5, "longitude of the ascending node, rad"),
-          any("periapsis", 0.7, "argument of pericentre, rad")},
+         {of_initial_state({"eccentricity", 0.5, 0, 1, false, true, false, "orbit eccentricity e"}),
+          of_initial_state(any("inclination", 0.3, "rad")),
+          of_initial_state(any("node", 0.5, "longitude of the ascending node, rad")),
+          of_initial_state(any("periapsis", 0.7, "argument of pericentre, rad"))},
          true,
          [](const parameter_values& v) {
              const double e = v.at("eccentricity"), i = v.at("inclination"), o = v.at("node"), w = v.at("periapsis");
@@ -105,8 +111,8 @@ const std::vector<system_entry>& registry() {
              return model<1>(hamiltonians::relativistic_pendulum{v.at("mass"), v.at("c"), v.at("k")}, {1.2, 0.9});
          }},
         {"henon_heiles", "Henon & Heiles 1964; started on the surface of section q1 = 0 at the given energy",
-         {{"energy", 1.0 / 6, 0, 1.0 / 6, true, false, false, "H; bounded motion up to 1/6"},
-          any("q2", 0.1, "starting q2"), any("p2", 0, "starting p2")},
+         {of_initial_state({"energy", 1.0 / 6, 0, 1.0 / 6, true, false, false, "H; bounded motion up to 1/6"}),
+          of_initial_state(any("q2", 0.1, "starting q2")), of_initial_state(any("p2", 0, "starting p2"))},
          false,
          [](const parameter_values& v) {
              return model<2>(hamiltonians::henon_heiles{},

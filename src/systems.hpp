@@ -24,6 +24,9 @@ struct parameter {
     bool high_open = false;  // high itself is not allowed
     bool integer = false;
     std::string meaning;  // with its unit where it has one
+    // Sets only the initial state, not the Hamiltonian (Henon-Heiles energy,
+    // q2, p2): an ensemble over it runs in one Hamiltonian's batches.
+    bool initial_state = false;
 
     bool accepts(double v) const;
     // "a number > 0", "an integer in [1, 1000000]": for error messages.

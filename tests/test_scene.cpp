@@ -60,8 +60,8 @@ TEST_CASE("scene: errors name the file, line and column and what was expected") 
         return text;
     };
     CHECK(error_of(replace(good, "t_end = 6.283185307179586", "t_end = 6.2\nstep = 3")) ==
-          "scene.toml:7:8: unknown key 'step' in the scene; expected one of: checkpoint, dt, initial, methods, name, output, "
-          "parameters, quick, system, t0, t_end, table, tolerances");
+          "scene.toml:7:8: unknown key 'step' in the scene; expected one of: checkpoint, dt, ensemble, initial, methods, name, "
+          "output, parameters, quick, system, t0, t_end, table, tolerances");
     CHECK(error_of(replace(good, "\"kepler\"\nparameters", "\"kepplr\"\nparameters")).rfind("scene.toml:2:10: unknown system 'kepplr'", 0) == 0);
     CHECK(error_of(replace(good, "\"rk4\"", "\"rk5\"")).rfind("scene.toml:4:36: unknown method 'rk5'", 0) == 0);
     CHECK(error_of(replace(good, "trajectory_every = 10", "trajectory_every = \"often\"")) ==
@@ -80,13 +80,44 @@ TEST_CASE("scene: errors name the file, line and column and what was expected") 
 }
 
 TEST_CASE("scene: the built-in set parses, quick and full") {
-    CHECK(default_scenes(true).size() == 11);
-    CHECK(default_scenes(false).size() == 11);
+    CHECK(default_scenes(true).size() == 12);
+    CHECK(default_scenes(false).size() == 12);
     for (const scene& s : default_scenes(true)) {
         CAPTURE(s.name);
-        CHECK(s.dt.size() >= 3);
+        CHECK(s.dt.size() >= (s.ensemble ? 1 : 3));  // an ensemble runs one step size
         CHECK(s.t_end > s.t0);
     }
+}
+
+TEST_CASE("scene: an [ensemble] is read in the file's axis order, and its errors are located") {
+    const std::string base = "system = \"henon_heiles\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.1\nt_end = 10\n[ensemble]\n";
+    const scene s = parse_scene(base + "grid = {q2 = {from = -0.4, to = 0.6, count = 3}, p2 = {from = 0, to = 1, count = 2}}\n"
+                                       "indicator = \"megno\"\n", "e.toml");
+    REQUIRE(s.ensemble);
+    REQUIRE(s.ensemble->grid.size() == 2);
+    CHECK(s.ensemble->grid[0].name == "q2");  // toml++ sorts keys: the order is the file's
+    CHECK(s.ensemble->grid[0].value(1) == doctest::Approx(0.1));
+    CHECK(s.ensemble->size() == 6);
+    CHECK(s.ensemble->megno);
+    const auto error_of = [&](const std::string& text) {
+        try {
+            parse_scene(text, "e.toml");
+        } catch (const scene_error& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    CHECK(error_of(base + "grid = {mass = {from = 0, to = 1, count = 2}}\n").find("e.toml:6:16: unknown key 'mass' in ensemble.grid of henon_heiles; expected one of: energy, p2, q2") == 0);
+    CHECK(error_of(base + "grid = {q2 = {from = 0, to = 1, count = 0}}\n").find("'q2.count' must be an integer in [1, 1000000]") !=
+          std::string::npos);
+    CHECK(error_of(base + "grid = {q2 = {from = 0, to = 1, count = 1000000}, p2 = {from = 0, to = 1, count = 1000}}\n")
+              .find("the grid has 1e+09 points; expected at most 1e+07") != std::string::npos);
+    std::string with_rk4 = base;
+    with_rk4.replace(with_rk4.find("leapfrog_kdk"), 12, "rk4");
+    CHECK(error_of(with_rk4 + "grid = {q2 = {from = 0, to = 1, count = 2}}\n")
+              .find("an ensemble runs one splitting table") != std::string::npos);
+    CHECK(error_of(base + "states = \"x.csv\"\ngrid = {q2 = {from = 0, to = 1, count = 2}}\n").find("either grid") !=
+          std::string::npos);
 }
 
 TEST_CASE("scene: files too large are refused before they are read, NUL bytes named with their line") {

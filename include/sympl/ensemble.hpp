@@ -302,11 +302,14 @@ void run_lanes(const H& h, const table& m, const State* start, int count, const 
     }
 }
 
-// OpenMP over the groups, dynamically scheduled (groups of chaotic or
-// blown-up trajectories take different times); the first exception thrown by
-// any group is rethrown after all have ended.
+}  // namespace detail
+
+// body(i) for i in [0, count) on `threads` OpenMP threads (0: OpenMP's
+// default), dynamically scheduled (groups of chaotic or blown-up trajectories
+// take different times); the first exception thrown by any call is rethrown
+// after all have ended. Without OpenMP, in order on this thread.
 template <class Body>
-void for_each_group(std::size_t groups, int threads, const Body& body) {
+void for_each_in_parallel(std::size_t count, int threads, const Body& body) {
     std::exception_ptr error;
 #ifdef _OPENMP
     const int team = threads > 0 ? threads : omp_get_max_threads();
@@ -314,7 +317,7 @@ void for_each_group(std::size_t groups, int threads, const Body& body) {
 #else
     (void)threads;
 #endif
-    for (long long g = 0; g < static_cast<long long>(groups); ++g) {
+    for (long long g = 0; g < static_cast<long long>(count); ++g) {
         try {
             body(std::size_t(g));
         } catch (...) {
@@ -326,8 +329,6 @@ void for_each_group(std::size_t groups, int threads, const Body& body) {
     }
     if (error) std::rethrow_exception(error);
 }
-
-}  // namespace detail
 
 // Trajectories [begin, end) of `starts` (begin a multiple of W, so that the
 // batches are the same as in the whole run): results[i - begin] for start i.
@@ -346,7 +347,7 @@ std::vector<trajectory_result<State>> run_ensemble_range(const H& h, const table
     if (begin == end) return results;
     for (std::size_t i = begin; i < end; ++i) detail::check_start(h, starts[i], i, starts[begin].size());
     const std::size_t groups = (end - begin + W - 1) / W;
-    detail::for_each_group(groups, o.threads, [&](std::size_t g) {
+    for_each_in_parallel(groups, o.threads, [&](std::size_t g) {
         const std::size_t first = begin + g * W;
         const int count = int(std::min<std::size_t>(W, end - first));
         if (o.megno)
@@ -378,7 +379,7 @@ auto run_parameter_ensemble(const MakeHamiltonian& make_hamiltonian, const std::
     std::vector<trajectory_result<State>> results(starts.size());
     for (std::size_t i = 0; i < starts.size(); ++i)
         detail::check_start(make_hamiltonian(parameters[i]), starts[i], i, starts.front().size());
-    detail::for_each_group(starts.size(), o.threads, [&](std::size_t i) {
+    for_each_in_parallel(starts.size(), o.threads, [&](std::size_t i) {
         const auto h = make_hamiltonian(parameters[i]);
         if (o.megno)
             detail::run_lanes<1, true>(h, method, &starts[i], 1, o, reduction, &results[i]);

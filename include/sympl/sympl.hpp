@@ -18,6 +18,7 @@
 #include "integrate.hpp"
 #include "phase_space.hpp"
 #include "phase_space_measures.hpp"
+#include "poincare_section.hpp"
 #include "richardson.hpp"
 #include "splitting_stepper.hpp"
 #include "table.hpp"
