@@ -95,7 +95,7 @@ std::string key_of(const system_entry& entry, const parameter_values& v) {
 
 // Point `index` of the scene's grid (the last axis varies fastest) or state
 // `index` of its CSV, with its start or the reason it has none.
-point point_at(const scene& s, const system_entry& entry, std::size_t index,
+point point_at(const scene& s, const system_entry& entry, const parameter_values& defaults, std::size_t index,
                const std::vector<std::vector<double>>& states) {
     point pt;
     pt.parameters = s.parameters;
@@ -120,8 +120,7 @@ point point_at(const scene& s, const system_entry& entry, std::size_t index,
         q0.assign(states[index].begin(), states[index].begin() + std::ptrdiff_t(n));
         p0.assign(states[index].begin() + std::ptrdiff_t(n), states[index].end());
     }
-    const parameter_values all = with_defaults(entry, s.parameters, s.source);
-    parameter_values merged = all;
+    parameter_values merged = defaults;
     for (const auto& [k, v] : pt.parameters) merged[k] = v;
     pt.hamiltonian_key = key_of(entry, merged);
     if (!pt.invalid.empty()) return pt;
@@ -220,7 +219,8 @@ ensemble_outcome run_ensemble_scene(const scene& s, const fs::path& dir, const s
     const std::size_t last = n * std::size_t(ranks.rank + 1) / std::size_t(ranks.size);
     const double started = seconds_now();
     std::vector<point> points;
-    for (std::size_t i = first; i < last; ++i) points.push_back(point_at(s, entry, i, states));
+    const parameter_values defaults = with_defaults(entry, s.parameters, s.source);
+    for (std::size_t i = first; i < last; ++i) points.push_back(point_at(s, entry, defaults, i, states));
 
     // Consecutive valid points of one Hamiltonian form a group: one call of
     // the library's ensemble (SIMD batches, threads).
@@ -351,11 +351,11 @@ ensemble_outcome run_ensemble_scene(const scene& s, const fs::path& dir, const s
 
     // A Poincare section (q1 = 0, upwards) of a few orbits spread over the grid.
     if (e.orbits > 0 && base.section) {
-        std::vector<std::size_t> chosen;
+        std::vector<std::pair<std::size_t, point>> chosen;
         for (std::size_t k = 0; k < e.orbits; ++k) {
             const std::size_t i = n * (2 * k + 1) / (2 * e.orbits);
-            const point pt = point_at(s, entry, i, states);
-            if (pt.invalid.empty()) chosen.push_back(i);
+            point pt = point_at(s, entry, defaults, i, states);
+            if (pt.invalid.empty()) chosen.emplace_back(i, std::move(pt));
         }
         atomic_file section(dir / (prefix + "poincare.csv"));
         std::ostringstream head;
@@ -364,8 +364,7 @@ ensemble_outcome run_ensemble_scene(const scene& s, const fs::path& dir, const s
         for (std::size_t i = 1; i <= base.degrees_of_freedom; ++i) head << ",p" << i;
         section.stream() << head.str() << "\n";
         std::size_t crossings = 0;
-        for (std::size_t i : chosen) {
-            const point pt = point_at(s, entry, i, states);
+        for (const auto& [i, pt] : chosen) {
             const problem p = make_problem(s.system, pt.parameters, s.q0, s.p0, s.source);
             try {
                 for (const auto& c : p.section(*rq.method, rq.dt, rq.steps, pt.x0)) {
@@ -383,7 +382,7 @@ ensemble_outcome run_ensemble_scene(const scene& s, const fs::path& dir, const s
         md << "Poincare section q1 = 0 (p1 > 0) of " << chosen.size() << " orbits (rows "
            << [&] {
                   std::string list;
-                  for (std::size_t i : chosen) list += (list.empty() ? "" : ", ") + std::to_string(i);
+                  for (const auto& c : chosen) list += (list.empty() ? "" : ", ") + std::to_string(c.first);
                   return list;
               }()
            << " of the CSV): " << crossings << " crossings, each located on the cubic Hermite interpolant of its step.\n\n";

@@ -107,12 +107,12 @@ void check_start(const H& h, const State& s, std::size_t index, Eigen::Index siz
     const std::string who = "run_ensemble: start " + std::to_string(index);
     check_state(h, s, who.c_str());
     if (s.size() != size)
-        throw invalid_argument(who + " has dimension " + std::to_string(s.size()) + " but start 0 has " +
+        throw invalid_argument(who + " has dimension " + std::to_string(s.size()) + " but the first start has " +
                                std::to_string(size) + "; expected one dimension for the whole ensemble");
     using std::isfinite;
-    if (!isfinite(static_cast<double>(energy(h, s))))
-        throw invalid_argument(who + " has energy " + number_text(static_cast<double>(energy(h, s))) +
-                               "; expected a state of finite energy");
+    const double e = static_cast<double>(energy(h, s));
+    if (!isfinite(e))
+        throw invalid_argument(who + " has energy " + number_text(e) + "; expected a state of finite energy");
 }
 
 // The step of a lane that went non-finite during a chunk of k steps from

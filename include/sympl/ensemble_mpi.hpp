@@ -5,8 +5,10 @@
 // order on the root. Each trajectory runs in the same lanes with the same
 // arithmetic whatever the rank count, so the results are bitwise identical
 // for 1, 2, 3 or any number of ranks. Link sympl::mpi (Boost.MPI and MPI).
+#include <algorithm>
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <boost/mpi/collectives.hpp>
