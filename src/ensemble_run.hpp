@@ -24,6 +24,9 @@ struct exchange {
     std::function<std::vector<std::string>(const std::string&)> gather = [](const std::string& mine) {
         return std::vector<std::string>{mine};
     };
+    // Ends every rank's process with this exit code (MPI_Abort): a rank that
+    // fails alone must not leave the others waiting in a gather.
+    std::function<void(int)> abort_all = [](int) {};
 };
 
 struct ensemble_outcome {

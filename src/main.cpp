@@ -218,27 +218,36 @@ int main(int argc, char** argv) {
         std::cerr << "sympl: " << e.what() << "\n";
         return 2;
     }
+    sympl::app::exchange ranks;  // the MPI ranks of `ensemble` and `report` under mpirun
+    // Under MPI an error on one rank ends them all (the others may wait for it in a gather).
+    const auto fail = [&](const char* what) {
+        const std::string who = ranks.size > 1 ? " (rank " + std::to_string(ranks.rank) + " of " +
+                                                     std::to_string(ranks.size) + ")"
+                                               : std::string();
+        std::cerr << "sympl" << who << ": " << what << "\n";
+        if (ranks.size > 1) ranks.abort_all(2);
+        return 2;
+    };
     try {
         if (*tables) print_tables(tables_json);
         if (*systems) print_systems(systems_json);
         if (*check) return check_table(kick, drift, convention, check_json);
+        if (*ensemble || *report) ranks = sympl::app::process_exchange();
         if (*ensemble)
             sympl::app::ensemble_command(sympl::app::load_scene(ensemble_file), ensemble_out, ensemble_threads,
-                                         ensemble_max_steps, sympl::app::process_exchange(), std::cout);
+                                         ensemble_max_steps, ranks, std::cout);
         if (*run) sympl::app::run_scene(sympl::app::load_scene(scene_file), run_json, std::cout, max_steps, resume);
         if (*report) {
             std::vector<sympl::app::scene> scenes;
             for (const auto& f : report_files) scenes.push_back(sympl::app::load_scene(f, report_options.quick));
             report_options.studies = report_files.empty();
             if (scenes.empty()) scenes = sympl::app::default_scenes(report_options.quick);
-            sympl::app::run_report(scenes, report_options, std::cout);
+            sympl::app::run_report(scenes, report_options, std::cout, ranks);
         }
     } catch (const sympl::error& e) {
-        std::cerr << "sympl: " << e.what() << "\n";
-        return 2;
+        return fail(e.what());
     } catch (const std::filesystem::filesystem_error& e) {
-        std::cerr << "sympl: " << e.what() << "\n";
-        return 2;
+        return fail(e.what());
     }
     return 0;
 }

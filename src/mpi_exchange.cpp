@@ -49,6 +49,7 @@ exchange process_exchange() {
         boost::mpi::gather(world, mine, all, 0);
         return all;
     };
+    x.abort_all = [](int code) { world.abort(code); };
     return x;
 #else
     throw invalid_argument(std::string("started by an MPI launcher (") + variable + " = " + std::getenv(variable) +

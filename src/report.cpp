@@ -3,6 +3,7 @@
 #include "report.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <iomanip>
 #include <map>
@@ -38,6 +39,69 @@ struct row {
 };
 
 std::string csv_number(double v) { return v < 0 ? "" : format_number(v, 6); }
+
+// A row's measurements as text, for the gather to rank 0 under MPI: numbers
+// as the shortest text that reads back as the same double (to_chars), the
+// failure message with its length. Rank 0 then has exactly what it would
+// have measured itself, timings aside.
+std::string row_record(std::size_t index, const row& r) {
+    std::string t = std::to_string(index);
+    const auto number = [&](double v) { t += ' ' + shortest(v); };
+    const run_result& m = r.r;
+    t += ' ' + std::to_string(int(m.stable)) + ' ' + std::to_string(m.blowup_step);
+    number(m.blowup_time);
+    t += ' ' + std::to_string(m.steps) + ' ' + std::to_string(m.force_evaluations);
+    number(m.max_energy_error);
+    number(r.loop_area_error);
+    t += ' ' + std::to_string(m.final_state.size());
+    for (double v : m.final_state) number(v);
+    t += ' ' + std::to_string(r.times.size());
+    for (double v : r.times) number(v);
+    t += ' ' + std::to_string(m.failure.size()) + ' ' + m.failure + '\n';
+    return t;
+}
+
+// Reads the records of one rank's block into `rows`.
+void read_row_records(const std::string& block, std::vector<row>& rows) {
+    const char* at = block.data();
+    const char* const end = block.data() + block.size();
+    const auto fail = [] {
+        throw error("sympl report: a rank sent a malformed result record; expected the same sympl on every rank");
+    };
+    const auto word = [&](auto& v) {
+        while (at < end && (*at == ' ' || *at == '\n')) ++at;
+        const auto [next, ec] = std::from_chars(at, end, v);
+        if (ec != std::errc()) fail();
+        at = next;
+    };
+    const auto count = [&](std::size_t largest) {
+        std::size_t n = 0;
+        word(n);
+        if (n > largest) fail();
+        return n;
+    };
+    while (true) {
+        while (at < end && *at == '\n') ++at;
+        if (at == end) return;
+        row& r = rows.at(count(rows.size() - 1));
+        run_result& m = r.r;
+        m.stable = count(1) == 1;
+        word(m.blowup_step);
+        word(m.blowup_time);
+        word(m.steps);
+        word(m.force_evaluations);
+        word(m.max_energy_error);
+        word(r.loop_area_error);
+        m.final_state.resize(count(std::size_t(1) << 30));
+        for (double& v : m.final_state) word(v);
+        r.times.resize(count(1000));
+        for (double& v : r.times) word(v);
+        const std::size_t n = count(std::size_t(1) << 20);
+        if (at == end || *at != ' ' || std::size_t(end - at - 1) < n) fail();
+        m.failure.assign(at + 1, n);
+        at += 1 + n;
+    }
+}
 
 // One method's measured runs on one scene, as a work-precision curve.
 std::vector<work_point> curve_of(const std::vector<row>& rows, const scene& s, const method_spec& m) {
@@ -171,7 +235,8 @@ void fastest_per_level(const std::vector<row>& rows, const std::vector<scene>& s
 
 }  // namespace
 
-void run_report(const std::vector<scene>& scenes, const report_options& options, std::ostream& out) {
+void run_report(const std::vector<scene>& scenes, const report_options& options, std::ostream& out,
+                const exchange& ranks) {
     // Everything is checked before anything runs: names, systems, methods.
     std::set<std::string> names;
     for (const scene& s : scenes)
@@ -183,59 +248,86 @@ void run_report(const std::vector<scene>& scenes, const report_options& options,
         check_run_size(s, problems.back(), options.max_steps, true);
     }
 
+    // Under mpirun the (scene, method, dt) runs are dealt round-robin over the
+    // ranks; rank 0 makes the references, gathers every rank's results and
+    // writes everything. One process is rank 0 of 1.
+    const bool writer = ranks.rank == 0;
+    const auto mine = [&](std::size_t i) { return int(i % std::size_t(ranks.size)) == ranks.rank; };
     // Written into a staging directory and moved into place together at the end.
-    output_set outputs(options.out_dir);
-    const fs::path dir = outputs.staging();
-    const progress bar;
-    std::vector<row> rows;
-    std::map<const scene*, reference_state> references;
+    std::optional<output_set> outputs;
+    if (writer) outputs.emplace(options.out_dir);
+    const fs::path dir = writer ? outputs->staging() : fs::path();
+    const progress bar{writer && isatty(STDERR_FILENO)};
     const int rounds = options.quick ? 3 : 5;
-    for (std::size_t k = 0; k < scenes.size(); ++k) {
-        const scene& s = scenes[k];
-        const problem& p = problems[k];
-        const std::string head = "[" + std::to_string(k + 1) + "/" + std::to_string(scenes.size()) + "] " + s.name;
-        bar.show(head + ": reference");
-        const reference_state& ref = references[&s] =
-            make_reference(s, p, finest_step(s), outputs.directory() / "cache");
+    std::map<const scene*, reference_state> references;
+    if (writer)
+        for (std::size_t k = 0; k < scenes.size(); ++k) {
+            bar.show("[" + std::to_string(k + 1) + "/" + std::to_string(scenes.size()) + "] " + scenes[k].name + ": reference");
+            references[&scenes[k]] = make_reference(scenes[k], problems[k], finest_step(scenes[k]), outputs->directory() / "cache");
+        }
+    std::vector<row> rows;
+    for (const scene& s : scenes)
         for (const scene_method& m : s.methods) {
             const bool adaptive = entry_of(m.kind).adaptive;
-            for (double v : sweep_of(s, m)) {
-                bar.show(head + ": " + m.name + " " + format_number(v));
-                row r{&s, &m, adaptive ? 0.0 : v, adaptive ? v : 0.0, {}, -1, -1, {}};
-                run_request rq;
-                rq.dt = v;
-                rq.tolerance = v;
-                rq.energy = p.hamiltonian;
-                rq.timing_repeats = 0;
-                if (bar.tty)
-                    rq.progress = [&](double t) {
-                        bar.show(head + ": " + m.name + " " + format_number(v) + ", t = " + format_number(t, 6) + " of " +
-                                 format_number(s.t_end, 6));
-                    };
-                r.r = p.run(m, rq, s.t0, s.t_end, p.x0);
-                if (r.r.stable && ref.failure.empty()) r.final_error = relative_difference(r.r.final_state, ref.x);
-                if (r.r.stable && s.output.loop_area) r.loop_area_error = loop_area_error(p, m, rq, s.t0, s.t_end);
-                rows.push_back(std::move(r));
-            }
+            for (double v : sweep_of(s, m)) rows.push_back(row{&s, &m, adaptive ? 0.0 : v, adaptive ? v : 0.0, {}, -1, -1, {}});
         }
+    const auto problem_of_row = [&](const row& r) -> const problem& { return problems[std::size_t(r.s - scenes.data())]; };
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        if (!mine(i)) continue;
+        row& r = rows[i];
+        const scene& s = *r.s;
+        const problem& p = problem_of_row(r);
+        const std::string head = "[" + std::to_string(i + 1) + "/" + std::to_string(rows.size()) + "] " + s.name + ": " +
+                                 r.method->name + " " + format_number(r.dt > 0 ? r.dt : r.tolerance);
+        bar.show(head);
+        run_request rq;
+        rq.dt = r.dt > 0 ? r.dt : r.tolerance;
+        rq.tolerance = rq.dt;
+        rq.energy = p.hamiltonian;
+        rq.timing_repeats = 0;
+        if (bar.tty)
+            rq.progress = [&](double t) {
+                bar.show(head + ", t = " + format_number(t, 6) + " of " + format_number(s.t_end, 6));
+            };
+        r.r = p.run(*r.method, rq, s.t0, s.t_end, p.x0);
+        if (r.r.stable && s.output.loop_area) r.loop_area_error = loop_area_error(p, *r.method, rq, s.t0, s.t_end);
     }
     // Timing: rounds over every stable run, interleaved between methods, so a
     // slow spell of a shared machine falls on all of them; median, min, max.
+    // Under MPI each rank times its own runs while the others time theirs.
     for (int round = 0; round < rounds; ++round) {
         bar.show("timing, round " + std::to_string(round + 1) + " of " + std::to_string(rounds));
-        for (row& r : rows) {
-            if (!r.r.stable) continue;
-            const std::size_t k = std::size_t(r.s - scenes.data());
+        for (std::size_t i = 0; i < rows.size(); ++i) {
+            row& r = rows[i];
+            if (!mine(i) || !r.r.stable) continue;
             run_request rq;
             rq.dt = r.dt > 0 ? r.dt : r.tolerance;
             rq.tolerance = rq.dt;
             rq.observed = false;
             rq.timing_repeats = 1;
             rq.min_measurement = options.quick ? 1e-3 : 5e-3;
-            r.times.push_back(problems[k].run(*r.method, rq, r.s->t0, r.s->t_end, problems[k].x0).seconds);
+            r.times.push_back(problem_of_row(r).run(*r.method, rq, r.s->t0, r.s->t_end, problem_of_row(r).x0).seconds);
         }
     }
+    if (ranks.size > 1) {
+        std::string records;
+        for (std::size_t i = 0; i < rows.size(); ++i)
+            if (mine(i)) records += row_record(i, rows[i]);
+        for (const std::string& block : ranks.gather(records)) read_row_records(block, rows);
+    }
+    // Scenes with an [ensemble] (the Henon-Heiles chaos map) run it too, over
+    // this process's threads and the ranks.
+    std::vector<ensemble_outcome> ensembles;
+    for (const scene& s : scenes)
+        if (s.ensemble) {
+            bar.show(s.name + ": ensemble of " + std::to_string(s.ensemble->size()) + " trajectories");
+            ensembles.push_back(run_ensemble_scene(s, dir, file_name_part(s.name) + "_", 0, options.max_steps,
+                                                   options.plots && have_gnuplot(), ranks));
+        }
+    if (!writer) return;
     for (row& r : rows) {
+        const reference_state& ref = references.at(r.s);
+        if (r.r.stable && ref.failure.empty()) r.final_error = relative_difference(r.r.final_state, ref.x);
         if (r.times.empty()) continue;
         std::sort(r.times.begin(), r.times.end());
         r.r.seconds = r.times[r.times.size() / 2];
@@ -250,7 +342,13 @@ void run_report(const std::vector<scene>& scenes, const report_options& options,
           "reference in long double (its own error in work_precision.csv). Wall time: median of "
        << rounds << " measurements with nothing observed, taken in rounds over all runs (interleaved between methods); "
           "each measurement repeats the run until it lasts "
-       << (options.quick ? "1 ms" : "5 ms") << " (min and max in work_precision.csv).\n\n";
+       << (options.quick ? "1 ms" : "5 ms") << " (min and max in work_precision.csv).";
+    if (ranks.size > 1)
+        md << " The runs were dealt round-robin over " << ranks.size
+           << " MPI ranks; each was timed on its rank while the other ranks timed theirs, so ranks sharing a node's "
+              "cores or memory slow each other: compare times within this report, not with a report of another rank "
+              "count. Everything else is identical to a one-process report.";
+    md << "\n\n";
     for (const scene& s : scenes)
         if (const std::string& why = references.at(&s).failure; !why.empty()) {
             md << "**" << markdown_cell(s.name) << ": no final errors.** " << markdown_cell(why)
@@ -261,16 +359,15 @@ void run_report(const std::vector<scene>& scenes, const report_options& options,
     const bool plots = options.plots && have_gnuplot();
     if (plots) plot_work_precision(rows, scenes, dir);
     energy_series_study(scenes, dir, plots);
-    // Scenes with an [ensemble] (the Henon-Heiles chaos map) run it too, on this process's threads.
     std::vector<std::string> ensemble_files;
-    for (const scene& s : scenes)
-        if (s.ensemble) {
-            bar.show(s.name + ": ensemble of " + std::to_string(s.ensemble->size()) + " trajectories");
-            const std::string prefix = file_name_part(s.name) + "_";
-            const ensemble_outcome e = run_ensemble_scene(s, dir, prefix, 0, options.max_steps, plots, exchange{});
-            md << e.summary;
-            ensemble_files.insert(ensemble_files.end(), e.files.begin(), e.files.end());
-            table << s.name << ": " << e.trajectories << " trajectories, " << e.chaotic << " chaotic, " << e.invalid
+    for (const ensemble_outcome& e : ensembles) {
+        md << e.summary;
+        ensemble_files.insert(ensemble_files.end(), e.files.begin(), e.files.end());
+    }
+    for (std::size_t k = 0, j = 0; k < scenes.size(); ++k)
+        if (scenes[k].ensemble) {
+            const ensemble_outcome& e = ensembles[j++];
+            table << scenes[k].name << ": " << e.trajectories << " trajectories, " << e.chaotic << " chaotic, " << e.invalid
                   << " invalid\n";
         }
     if (options.studies) {
@@ -290,9 +387,9 @@ void run_report(const std::vector<scene>& scenes, const report_options& options,
     summary.stream() << md.str();
     summary.commit();
     const bool drawn = plots && fs::exists(dir / "work_precision.png");
-    outputs.commit();
+    outputs->commit();
     bar.done();
-    const fs::path final_dir = outputs.directory();
+    const fs::path final_dir = outputs->directory();
     out << table.str() << "\nwrote " << (final_dir / "summary.md").string() << ", "
         << (final_dir / "work_precision.csv").string()
         << (drawn ? ", " + (final_dir / "work_precision.png").string() : std::string()) << "\n";

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "ensemble_run.hpp"
 #include "scene.hpp"
 
 namespace sympl::app {
@@ -17,7 +18,10 @@ struct report_options {
     double max_steps = default_max_steps;  // per run, checked before anything runs
 };
 
-// The study over `scenes`; writes into options.out_dir and prints a short table.
-void run_report(const std::vector<scene>& scenes, const report_options& options, std::ostream& out);
+// The study over `scenes`; writes into options.out_dir and prints a short
+// table. Under MPI (`ranks` from process_exchange()) the runs are spread over
+// the ranks and rank 0 alone writes and prints.
+void run_report(const std::vector<scene>& scenes, const report_options& options, std::ostream& out,
+                const exchange& ranks = exchange{});
 
 }  // namespace sympl::app
