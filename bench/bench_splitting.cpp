@@ -1,8 +1,28 @@
-// sympl's generic stepper against the same schemes hand-written over raw
-// arrays and against Boost.Odeint, side by side in one process, on Kepler and
-// on an FPU-beta chain with N = 1e5 (analytic forces everywhere).
-// Prints ns/step, force evaluations/step and ratios (best of several runs).
-//   bench_splitting [--quick]
+// Per-step cost of sympl's generic stepper against tight hand-written loops
+// and Boost.Odeint running the same table, side by side in one process.
+//
+// Problems: Kepler and Henon-Heiles (2-D, fixed-size states), FPU-beta chains
+// of N = 1e3 and 1e5 (and 1e6 with --large, SB3A only). Tables: leapfrog KDK
+// (velocity Verlet), McLachlan's SB3A (Odeint's symplectic_rkn_sb3a_mclachlan)
+// and Blanes & Moan's S10 (a 10-stage table, run in Odeint through its
+// symplectic_nystroem_stepper_base with the same coefficients).
+//
+// Contenders, all calling the same inlined force kernel:
+//   hand          a tight loop over std::array (2-D) or std::vector (FPU), the
+//                 stage count and the drift-first / kick-first pattern known at
+//                 compile time, the last force reused (leapfrog) and the last
+//                 drift joined with the next step's first (drift-first tables);
+//   sympl raw     sympl::splitting_stepper::steps(x, dt, n) on a user-style
+//                 Hamiltonian whose force(q, f) calls the kernel through
+//                 q.data() and f.data(), velocity(p) returning p;
+//   sympl eigen   the same with the force written as Eigen expressions;
+//   sympl step()  the raw-pointer Hamiltonian, one step() call per step
+//                 (each call checks the state: a pass over it);
+//   odeint        do_step per step, the momentum derivative calling the kernel.
+// Per-step cost with set-up cancelled: (time of 2n steps - time of n steps) / n,
+// in rounds that run every contender once (interleaved, so a slow spell of a
+// shared machine falls on all), median over the rounds.
+//   bench_splitting [--quick] [--large]
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -17,211 +37,327 @@
 #include <boost/numeric/odeint.hpp>
 
 #include <sympl/sympl.hpp>
-#include <sympl/hamiltonians/fpu_beta.hpp>
 #include <sympl/hamiltonians/kepler.hpp>
 
 namespace odeint = boost::numeric::odeint;
 
 namespace {
 
-double best_ns_per_step(int repeats, long steps, const std::function<void()>& setup, const std::function<double()>& run) {
-    double best = 1e300;
-    volatile double sink = 0;
-    for (int r = 0; r < repeats; ++r) {
-        setup();
-        const auto t0 = std::chrono::steady_clock::now();
-        sink = sink + run();
-        const auto t1 = std::chrono::steady_clock::now();
-        best = std::min(best, std::chrono::duration<double, std::nano>(t1 - t0).count() / steps);
+// ---- the force kernels (raw pointers) and their Eigen-expression twins ------
+struct kepler_kernel {
+    static constexpr int dimension = 2;
+    void operator()(const double* q, double* f) const {
+        const double r2 = q[0] * q[0] + q[1] * q[1];
+        const double k = -1.0 / (r2 * std::sqrt(r2));
+        f[0] = k * q[0];
+        f[1] = k * q[1];
     }
-    return best;
-}
-
-struct row {
-    std::string name;
-    double ns;
-    double forces;
+    template <class V> void eigen_force(const V& q, V& f) const {
+        const double r2 = q.squaredNorm();
+        f = q * (-1.0 / (r2 * std::sqrt(r2)));
+    }
+    template <class V> auto potential(const V& q) const { using std::sqrt; return -1 / sqrt(q.squaredNorm()); }
 };
 
-void report(const char* problem, const std::vector<row>& rows, const char* baseline_hand, const char* baseline_odeint,
-            const char* scheme) {
-    double hand = 0, ode = 0, ours = 0;
-    for (const row& r : rows) {
-        if (r.name == baseline_hand) hand = r.ns;
-        if (r.name == baseline_odeint) ode = r.ns;
-        if (r.name.rfind("sympl", 0) == 0) ours = r.ns;
+struct henon_heiles_kernel {
+    static constexpr int dimension = 2;
+    void operator()(const double* q, double* f) const {
+        f[0] = -q[0] - 2 * q[0] * q[1];
+        f[1] = -q[1] - q[0] * q[0] + q[1] * q[1];
     }
-    std::printf("  %-44s %12s %14s\n", scheme, "ns/step", "forces/step");
-    for (const row& r : rows) std::printf("  %-44s %12.1f %14.2f\n", r.name.c_str(), r.ns, r.forces);
-    std::printf("  ratio sympl / hand-written = %.3f   sympl / odeint = %.3f   (%s)\n\n", ours / hand, ours / ode, problem);
-}
-
-// ---- hand-written reference loops -------------------------------------------
-void kepler_force(const double* q, double* f) {
-    const double r2 = q[0] * q[0] + q[1] * q[1];
-    const double k = -1.0 / (r2 * std::sqrt(r2));
-    f[0] = k * q[0];
-    f[1] = k * q[1];
-}
-
-void fpu_force(const double* q, double* f, long n, double beta) {
-    double left = q[0] + beta * q[0] * q[0] * q[0];
-    for (long i = 0; i + 1 < n; ++i) {
-        const double r = q[i + 1] - q[i];
-        const double right = r + beta * r * r * r;
-        f[i] = right - left;
-        left = right;
+    template <class V> void eigen_force(const V& q, V& f) const {
+        f = -q - Eigen::Vector2d(2 * q[0] * q[1], q[0] * q[0] - q[1] * q[1]);
     }
-    const double r = -q[n - 1];
-    f[n - 1] = (r + beta * r * r * r) - left;
-}
+    template <class V> auto potential(const V& q) const {
+        return (q[0] * q[0] + q[1] * q[1]) / 2 + q[0] * q[0] * q[1] - q[1] * q[1] * q[1] / 3;
+    }
+};
 
-// Leapfrog KDK with the last force reused.
-template <class Force>
-void hand_leapfrog(double* q, double* p, double* f, long n, double dt, long steps, Force force) {
+// FPU-beta with fixed ends: f_i = phi'(q_{i+1} - q_i) - phi'(q_i - q_{i-1}), phi'(r) = r + beta r^3.
+struct fpu_kernel {
+    long n;
+    double beta = 1.0;
+    void operator()(const double* q, double* f) const {
+        double left = q[0] + beta * q[0] * q[0] * q[0];
+        for (long i = 0; i + 1 < n; ++i) {
+            const double r = q[i + 1] - q[i];
+            const double right = r + beta * r * r * r;
+            f[i] = right - left;
+            left = right;
+        }
+        const double r = -q[n - 1];
+        f[n - 1] = (r + beta * r * r * r) - left;
+    }
+    // One pass, phi' evaluated twice per bond: what Eigen expressions give.
+    template <class V> void eigen_force(const V& q, V& f) const {
+        const auto phi = [this](const auto& r) { return r + beta * r.cube(); };
+        const auto a = q.array();
+        f.segment(1, n - 2) = phi(a.segment(2, n - 2) - a.segment(1, n - 2)) - phi(a.segment(1, n - 2) - a.head(n - 2));
+        const double r0 = q[1] - q[0], rn = -q[n - 1], q0 = q[0], d = q[n - 1] - q[n - 2];
+        f[0] = (r0 + beta * r0 * r0 * r0) - (q0 + beta * q0 * q0 * q0);
+        f[n - 1] = (rn + beta * rn * rn * rn) - (d + beta * d * d * d);
+    }
+    template <class V> auto potential(const V& q) const {
+        typename V::Scalar v(0);
+        for (long i = 0; i <= n; ++i) {
+            const auto r = (i < n ? q[i] : 0.0) - (i > 0 ? q[i - 1] : 0.0);
+            v += r * r / 2 + beta * r * r * r * r / 4;
+        }
+        return v;
+    }
+};
+
+// The user-style Hamiltonians sympl runs: T = |p|^2 / 2, velocity(p) = p,
+// the force through raw pointers or as Eigen expressions.
+enum class force_style { raw_pointers, eigen_expressions };
+template <class Kernel, force_style Style>
+struct user_hamiltonian {
+    Kernel kernel;
+    template <class V> auto kinetic(const V& p) const { return p.squaredNorm() / 2; }
+    template <class V> auto potential(const V& q) const { return kernel.potential(q); }
+    template <class V> const V& velocity(const V& p) const { return p; }
+    template <class V> void force(const V& q, V& f) const {
+        if constexpr (Style == force_style::raw_pointers) kernel(q.data(), f.data());
+        else kernel.eigen_force(q, f);
+    }
+};
+
+// ---- tight hand-written loops ---------------------------------------------
+// Leapfrog KDK, the last force of a step reused by the next.
+template <int N, class Force>
+void hand_leapfrog(double* q, double* p, double* f, long n_runtime, double dt, long steps, const Force& force) {
+    const long n = N > 0 ? N : n_runtime;
+    const double h = 0.5 * dt;
     force(q, f);
     for (long s = 0; s < steps; ++s) {
-        for (long i = 0; i < n; ++i) p[i] += 0.5 * dt * f[i];
+        for (long i = 0; i < n; ++i) p[i] += h * f[i];
         for (long i = 0; i < n; ++i) q[i] += dt * p[i];
         force(q, f);
-        for (long i = 0; i < n; ++i) p[i] += 0.5 * dt * f[i];
+        for (long i = 0; i < n; ++i) p[i] += h * f[i];
     }
 }
 
-// Drift-first 6-stage SB3A (McLachlan 1995), Odeint's coefficients: 6 drifts, 5 kicks.
-template <class Force>
-void hand_sb3a(double* q, double* p, double* f, long n, double dt, long steps, Force force) {
-    const double a0 = 0.40518861839525227722, a1 = -0.28714404081652408900, a2 = 0.5 - (a0 + a1);
-    const double b0 = -3.0 / 73, b1 = 17.0 / 59, b2 = 1 - 2 * (b0 + b1);
-    const double a[6] = {a0, a1, a2, a2, a1, a0}, b[5] = {b0, b1, b2, b1, b0};
-    for (long s = 0; s < steps; ++s)
-        for (int k = 0; k < 6; ++k) {
-            const double ha = a[k] * dt;
-            for (long i = 0; i < n; ++i) q[i] += ha * p[i];
-            if (k == 5) break;
+// Drift-first D d0 K k0 D d1 ... K k(K-1) D dK, the last drift of a step
+// joined with the first of the next; K known at compile time.
+template <int N, int K, class Force>
+void hand_drift_first(double* q, double* p, double* f, long n_runtime, double dt, long steps,
+                      const std::array<double, K + 1>& drift, const std::array<double, K>& kick, const Force& force) {
+    const long n = N > 0 ? N : n_runtime;
+    std::array<double, K + 1> hd;
+    std::array<double, K> hk;
+    for (int k = 0; k <= K; ++k) hd[k] = drift[k] * dt;
+    for (int k = 0; k < K; ++k) hk[k] = kick[k] * dt;
+    const double joined = hd[K] + hd[0];
+    for (long i = 0; i < n; ++i) q[i] += hd[0] * p[i];
+    for (long s = 0; s < steps; ++s) {
+        for (int k = 0; k < K; ++k) {
             force(q, f);
-            const double hb = b[k] * dt;
-            for (long i = 0; i < n; ++i) p[i] += hb * f[i];
+            for (long i = 0; i < n; ++i) p[i] += hk[k] * f[i];
+            const double d = k + 1 < K ? hd[k + 1] : (s + 1 < steps ? joined : hd[K]);
+            for (long i = 0; i < n; ++i) q[i] += d * p[i];
         }
-}
-
-// ---- the benchmark -----------------------------------------------------------------
-void kepler_bench(bool quick) {
-    const long steps = quick ? 200000 : 2000000;
-    const int repeats = quick ? 3 : 7;
-    const double dt = 1e-3;
-    using State = sympl::phase_space<double, 2>;
-    const State x0 = sympl::hamiltonians::kepler::initial_state(0.5);
-    std::printf("Kepler e = 0.5, fixed-size 2D state, %ld steps of dt = %g\n", steps, dt);
-    for (int scheme = 0; scheme < 2; ++scheme) {
-        std::vector<row> rows;
-        const char* table = scheme == 0 ? "leapfrog_kdk" : "odeint_sb3a_mclachlan";
-        {
-            auto s = sympl::make_stepper<State>(sympl::hamiltonians::kepler{}, sympl::method(table));
-            State x = x0;
-            const double ns = best_ns_per_step(repeats, steps, [&] { x = x0; s.reset_counters(); },
-                                               [&] { s.steps(x, dt, steps); return x.q[0]; });
-            rows.push_back({std::string("sympl ") + table, ns, double(s.force_evaluations()) / steps});
-        }
-        {
-            std::array<double, 2> q, p, f;
-            long forces = 0;
-            auto force = [&](const double* qq, double* ff) { ++forces; kepler_force(qq, ff); };
-            const double ns = best_ns_per_step(repeats, steps, [&] { q = {x0.q[0], x0.q[1]}; p = {x0.p[0], x0.p[1]}; forces = 0; },
-                [&] {
-                    if (scheme == 0) hand_leapfrog(q.data(), p.data(), f.data(), 2, dt, steps, force);
-                    else hand_sb3a(q.data(), p.data(), f.data(), 2, dt, steps, force);
-                    return q[0];
-                });
-            rows.push_back({scheme == 0 ? "hand-written leapfrog" : "hand-written sb3a", ns, double(forces) / steps});
-        }
-        {
-            using C = std::array<double, 2>;
-            C q, p;
-            long forces = 0;
-            if (scheme == 0) {
-                odeint::velocity_verlet<C> vv;
-                auto accel = [&](const C& x, const C&, C& a, double) { ++forces; kepler_force(x.data(), a.data()); };
-                const double ns = best_ns_per_step(repeats, steps, [&] { q = {x0.q[0], x0.q[1]}; p = {x0.p[0], x0.p[1]}; forces = 0; vv.reset(); },
-                    [&] { for (long s = 0; s < steps; ++s) vv.do_step(accel, std::make_pair(std::ref(q), std::ref(p)), 0.0, dt); return q[0]; });
-                rows.push_back({"odeint velocity_verlet", ns, double(forces) / steps});
-            } else {
-                odeint::symplectic_rkn_sb3a_mclachlan<C> sb;
-                auto dq = [](const C& pp, C& d) { d = pp; };
-                auto dp = [&](const C& x, C& d) { ++forces; kepler_force(x.data(), d.data()); };
-                const double ns = best_ns_per_step(repeats, steps, [&] { q = {x0.q[0], x0.q[1]}; p = {x0.p[0], x0.p[1]}; forces = 0; },
-                    [&] { for (long s = 0; s < steps; ++s) sb.do_step(std::make_pair(dq, dp), std::make_pair(std::ref(q), std::ref(p)), 0.0, dt); return q[0]; });
-                rows.push_back({"odeint symplectic_rkn_sb3a_mclachlan", ns, double(forces) / steps});
-            }
-        }
-        report("Kepler", rows, scheme == 0 ? "hand-written leapfrog" : "hand-written sb3a",
-               scheme == 0 ? "odeint velocity_verlet" : "odeint symplectic_rkn_sb3a_mclachlan",
-               scheme == 0 ? "leapfrog (velocity Verlet)" : "4th order: McLachlan SB3A, 6 stages");
     }
 }
 
-void fpu_bench(bool quick) {
-    const long n = 100000;
-    const long steps = quick ? 20 : 200;
-    const int repeats = quick ? 3 : 5;
-    const double dt = 0.01, beta = 1.0;
-    std::vector<double> q0(n), p0(n, 0.0);
-    for (long i = 0; i < n; ++i) q0[i] = 0.1 * std::sin(3.141592653589793 * (i + 1) / (n + 1)) + 1e-3 * std::sin(0.37 * i);
-    std::printf("FPU-beta chain, N = %ld, dynamic state, %ld steps of dt = %g\n", n, steps, dt);
-    using State = sympl::phase_space<double>;
-    const Eigen::Map<const Eigen::VectorXd> q0m(q0.data(), n), p0m(p0.data(), n);
-    for (int scheme = 0; scheme < 2; ++scheme) {
-        std::vector<row> rows;
-        const char* table = scheme == 0 ? "leapfrog_kdk" : "odeint_sb3a_mclachlan";
-        {
-            auto s = sympl::make_stepper<State>(sympl::hamiltonians::fpu_beta{beta}, sympl::method(table));
-            State x(q0m, p0m);
-            const double ns = best_ns_per_step(repeats, steps, [&] { x.q = q0m; x.p = p0m; s.reset_counters(); },
-                                               [&] { s.steps(x, dt, steps); return x.q[7]; });
-            rows.push_back({std::string("sympl ") + table, ns, double(s.force_evaluations()) / steps});
+// ---- Odeint: the same table through its Nystrom base (drift, then kick, per stage) ----
+template <std::size_t Stages, class C>
+using odeint_nystrom =
+    odeint::symplectic_nystroem_stepper_base<Stages, 4, C, C, double, C, C, double,
+                                             typename odeint::algebra_dispatcher<C>::algebra_type,
+                                             typename odeint::operations_dispatcher<C>::operations_type,
+                                             odeint::initially_resizer>;
+template <std::size_t Stages, class C>
+struct odeint_table_stepper : odeint_nystrom<Stages, C> {
+    using typename odeint_nystrom<Stages, C>::coef_type;
+    odeint_table_stepper(const coef_type& drift, const coef_type& kick) : odeint_nystrom<Stages, C>(drift, kick) {}
+};
+
+// ---- timing ------------------------------------------------------------------
+double seconds(const std::function<void()>& f) {
+    const auto t0 = std::chrono::steady_clock::now();
+    f();
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// A contender: reset to the initial state, run n steps, return a number of the state (kept live).
+struct contender {
+    std::string name;
+    std::function<void()> reset;
+    std::function<double(long)> run;
+    std::vector<double> per_step = {};  // ns, one per round
+    double median() {
+        std::sort(per_step.begin(), per_step.end());
+        return per_step[per_step.size() / 2];
+    }
+};
+
+volatile double sink = 0;
+
+void measure(std::vector<contender>& cs, long n, int rounds) {
+    for (int r = 0; r < rounds; ++r)
+        for (contender& c : cs) {
+            c.reset();
+            const double t1 = seconds([&] { sink = sink + c.run(n); });
+            c.reset();
+            const double t2 = seconds([&] { sink = sink + c.run(2 * n); });
+            c.per_step.push_back(std::max(t2 - t1, 0.0) / double(n) * 1e9);
         }
-        {
-            std::vector<double> q, p, f(n);
-            long forces = 0;
-            auto force = [&](const double* qq, double* ff) { ++forces; fpu_force(qq, ff, n, beta); };
-            const double ns = best_ns_per_step(repeats, steps, [&] { q = q0; p = p0; forces = 0; },
-                [&] {
-                    if (scheme == 0) hand_leapfrog(q.data(), p.data(), f.data(), n, dt, steps, force);
-                    else hand_sb3a(q.data(), p.data(), f.data(), n, dt, steps, force);
-                    return q[7];
-                });
-            rows.push_back({scheme == 0 ? "hand-written leapfrog" : "hand-written sb3a", ns, double(forces) / steps});
+}
+
+void print(const char* problem, const char* scheme, std::vector<contender>& cs) {
+    std::printf("%s, %s\n", problem, scheme);
+    double hand = 0, odeint_ns = 0;
+    for (contender& c : cs) {
+        if (c.name.rfind("hand", 0) == 0) hand = c.median();
+        if (c.name.rfind("odeint", 0) == 0) odeint_ns = c.median();
+    }
+    std::printf("  %-46s %11s %9s %9s\n", "", "ns/step", "/ hand", "/ odeint");
+    for (contender& c : cs)
+        std::printf("  %-46s %11.2f %9.3f %9.3f\n", c.name.c_str(), c.median(), c.median() / hand, c.median() / odeint_ns);
+    std::printf("\n");
+}
+
+struct scheme {
+    const char* label;
+    const char* table;
+};
+
+// One problem: every scheme, every contender. State: q0, p0 of dimension N (0: dynamic, n).
+template <int N, class Kernel>
+void run_problem(const char* problem, const Kernel& kernel, const std::vector<double>& q0, const std::vector<double>& p0,
+                 double dt, long n_steps, int rounds, const std::vector<scheme>& schemes) {
+    const long n = long(q0.size());
+    using State = sympl::phase_space<double, N == 0 ? Eigen::Dynamic : N>;
+    using C = std::conditional_t<N == 0, std::vector<double>, std::array<double, std::size_t(N > 0 ? N : 1)>>;
+    const auto to_state = [&] {
+        State x(n);
+        for (long i = 0; i < n; ++i) x.q[i] = q0[i], x.p[i] = p0[i];
+        return x;
+    };
+    const auto to_container = [&](const std::vector<double>& v) {
+        C c{};
+        if constexpr (N == 0) c = v;
+        else std::copy(v.begin(), v.end(), c.begin());
+        return c;
+    };
+    for (const scheme& sc : schemes) {
+        const sympl::table t = sympl::method(sc.table);
+        std::vector<contender> cs;
+        State x = to_state();
+        C q = to_container(q0), p = to_container(p0), f = to_container(q0);
+        auto raw = sympl::make_stepper<State>(user_hamiltonian<Kernel, force_style::raw_pointers>{kernel}, t);
+        auto eig = sympl::make_stepper<State>(user_hamiltonian<Kernel, force_style::eigen_expressions>{kernel}, t);
+        const auto reset_state = [&, x0 = x] { x = x0; };
+        const auto reset_arrays = [&] { q = to_container(q0); p = to_container(p0); };
+        const auto subs = t.substeps();
+        const bool leapfrog = std::string(sc.table) == "leapfrog_kdk";
+        // hand
+        if (leapfrog) {
+            cs.push_back({"hand leapfrog", reset_arrays, [&](long k) {
+                              hand_leapfrog<N>(q.data(), p.data(), f.data(), n, dt, k, kernel);
+                              return q[0];
+                          }});
         }
-        {
-            using C = std::vector<double>;
-            C q, p;
-            long forces = 0;
-            if (scheme == 0) {
-                odeint::velocity_verlet<C> vv;
-                auto accel = [&](const C& x, const C&, C& a, double) { ++forces; fpu_force(x.data(), a.data(), n, beta); };
-                const double ns = best_ns_per_step(repeats, steps, [&] { q = q0; p = p0; forces = 0; vv.reset(); },
-                    [&] { for (long s = 0; s < steps; ++s) vv.do_step(accel, std::make_pair(std::ref(q), std::ref(p)), 0.0, dt); return q[7]; });
-                rows.push_back({"odeint velocity_verlet", ns, double(forces) / steps});
-            } else {
-                odeint::symplectic_rkn_sb3a_mclachlan<C> sb;
-                auto dq = [](const C& pp, C& d) { d = pp; };
-                auto dp = [&](const C& x, C& d) { ++forces; fpu_force(x.data(), d.data(), n, beta); };
-                const double ns = best_ns_per_step(repeats, steps, [&] { q = q0; p = p0; forces = 0; },
-                    [&] { for (long s = 0; s < steps; ++s) sb.do_step(std::make_pair(dq, dp), std::make_pair(std::ref(q), std::ref(p)), 0.0, dt); return q[7]; });
-                rows.push_back({"odeint symplectic_rkn_sb3a_mclachlan", ns, double(forces) / steps});
+        // The drift-first tables here: SB3A (5 kicks) and S10 (10 kicks).
+        std::array<double, 6> d5{};
+        std::array<double, 5> k5{};
+        std::array<double, 11> d10{};
+        std::array<double, 10> k10{};
+        if (!leapfrog) {
+            const std::size_t kicks = subs.size() / 2;
+            for (std::size_t i = 0; i < subs.size(); ++i) {
+                const double w = double(subs[i].weight);
+                if (kicks == 5) (i % 2 ? k5[i / 2] : d5[i / 2]) = w;
+                else (i % 2 ? k10[i / 2] : d10[i / 2]) = w;
             }
+            if (kicks == 5)
+                cs.push_back({"hand drift-first, 5 kicks", reset_arrays, [&](long k) {
+                                  hand_drift_first<N, 5>(q.data(), p.data(), f.data(), n, dt, k, d5, k5, kernel);
+                                  return q[0];
+                              }});
+            else
+                cs.push_back({"hand drift-first, 10 kicks", reset_arrays, [&](long k) {
+                                  hand_drift_first<N, 10>(q.data(), p.data(), f.data(), n, dt, k, d10, k10, kernel);
+                                  return q[0];
+                              }});
         }
-        report("FPU-beta", rows, scheme == 0 ? "hand-written leapfrog" : "hand-written sb3a",
-               scheme == 0 ? "odeint velocity_verlet" : "odeint symplectic_rkn_sb3a_mclachlan",
-               scheme == 0 ? "leapfrog (velocity Verlet)" : "4th order: McLachlan SB3A, 6 stages");
+        cs.push_back({"sympl raw-pointer force, steps(n)", [&] { reset_state(); raw.reset_counters(); }, [&](long k) {
+                          raw.steps(x, dt, std::size_t(k));
+                          return x.q[0];
+                      }});
+        cs.push_back({"sympl Eigen-expression force, steps(n)", [&] { reset_state(); }, [&](long k) {
+                          eig.steps(x, dt, std::size_t(k));
+                          return x.q[0];
+                      }});
+        cs.push_back({"sympl raw-pointer force, step() per step", reset_state, [&](long k) {
+                          for (long i = 0; i < k; ++i) raw.step(x, dt);
+                          return x.q[0];
+                      }});
+        // odeint
+        const auto dq = [](const C& pp, C& d) { d = pp; };
+        const auto dp = [&](const C& qq, C& d) { kernel(qq.data(), d.data()); };
+        odeint::velocity_verlet<C> vv;
+        odeint::symplectic_rkn_sb3a_mclachlan<C> sb3a;
+        typename odeint_table_stepper<11, C>::coef_type od{}, ok{};
+        for (int i = 0; i < 11; ++i) od[i] = d10[i], ok[i] = i < 10 ? k10[i] : 0.0;
+        odeint_table_stepper<11, C> s10(od, ok);
+        if (leapfrog)
+            cs.push_back({"odeint velocity_verlet", [&] { reset_arrays(); vv.reset(); }, [&](long k) {
+                              auto accel = [&](const C& qq, const C&, C& a, double) { kernel(qq.data(), a.data()); };
+                              for (long i = 0; i < k; ++i) vv.do_step(accel, std::make_pair(std::ref(q), std::ref(p)), 0.0, dt);
+                              return q[0];
+                          }});
+        else if (subs.size() / 2 == 5)
+            cs.push_back({"odeint symplectic_rkn_sb3a_mclachlan", reset_arrays, [&](long k) {
+                              for (long i = 0; i < k; ++i)
+                                  sb3a.do_step(std::make_pair(dq, dp), std::make_pair(std::ref(q), std::ref(p)), 0.0, dt);
+                              return q[0];
+                          }});
+        else
+            cs.push_back({"odeint nystrom base, the same 10-kick table", reset_arrays, [&](long k) {
+                              for (long i = 0; i < k; ++i)
+                                  s10.do_step(std::make_pair(dq, dp), std::make_pair(std::ref(q), std::ref(p)), 0.0, dt);
+                              return q[0];
+                          }});
+        measure(cs, n_steps, rounds);
+        print(problem, sc.label, cs);
     }
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-    const bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
-    std::printf("bench_splitting (-O3 -march=native); best of several runs, one process\n\n");
-    kepler_bench(quick);
-    fpu_bench(quick);
+    bool quick = false, large = false;
+    for (int i = 1; i < argc; ++i) {
+        if (std::strcmp(argv[i], "--quick") == 0) quick = true;
+        else if (std::strcmp(argv[i], "--large") == 0) large = true;
+        else {
+            std::fprintf(stderr, "bench_splitting: unknown argument '%s'; expected --quick or --large\n", argv[i]);
+            return 2;
+        }
+    }
+    const int rounds = quick ? 7 : 21;
+    std::printf("bench_splitting: per-step cost, set-up cancelled ((t(2n) - t(n)) / n), median of %d interleaved rounds\n\n",
+                rounds);
+    const std::vector<scheme> all = {{"leapfrog (velocity Verlet)", "leapfrog_kdk"},
+                                     {"SB3A (McLachlan 1995), 5 forces", "odeint_sb3a_mclachlan"},
+                                     {"S10 (Blanes & Moan 2002), 10 forces", "blanes_moan_s10"}};
+    const auto kepler0 = sympl::hamiltonians::kepler::initial_state(0.5);
+    run_problem<2>("Kepler e = 0.5", kepler_kernel{}, {kepler0.q[0], kepler0.q[1]}, {kepler0.p[0], kepler0.p[1]}, 1e-3,
+                   quick ? 20000 : 100000, rounds, all);
+    run_problem<2>("Henon-Heiles E = 1/8", henon_heiles_kernel{}, {0.0, 0.1}, {std::sqrt(0.25 - 0.01 + 2e-3 / 3), 0.0},
+                   1e-2, quick ? 20000 : 100000, rounds, all);
+    for (long n : {1000L, 100000L}) {
+        std::vector<double> q0(n), p0(n, 0.0);
+        for (long i = 0; i < n; ++i)
+            q0[i] = 0.1 * std::sin(3.141592653589793 * double(i + 1) / double(n + 1)) + 1e-3 * std::sin(0.37 * double(i));
+        const std::string name = "FPU-beta N = " + std::to_string(n);
+        run_problem<0>(name.c_str(), fpu_kernel{n}, q0, p0, 0.01, (quick ? 2e6 : 1e7) / double(n), rounds, all);
+    }
+    if (large) {
+        const long n = 1000000;
+        std::vector<double> q0(n), p0(n, 0.0);
+        for (long i = 0; i < n; ++i) q0[i] = 0.1 * std::sin(3.141592653589793 * double(i + 1) / double(n + 1));
+        run_problem<0>("FPU-beta N = 1e6", fpu_kernel{n}, q0, p0, 0.01, quick ? 3 : 6, rounds, {all[1]});
+    }
 }

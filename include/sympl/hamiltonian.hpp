@@ -123,9 +123,10 @@ void gradient(const Fn& fn, const Vec& x, Vec& out) {
 }  // namespace detail
 
 // f = -dV/dq (Gould & Tobochnik eq. 3.73a), analytic when H provides it.
+// Forced inline (as velocity): the steppers' loops call it once per sub-step.
 template <class H, class Vec>
     requires separable_hamiltonian<H, Vec>
-void force(const H& h, const Vec& q, Vec& f) {
+[[gnu::always_inline]] inline void force(const H& h, const Vec& q, Vec& f) {
     if constexpr (has_force_into<H, Vec>) {
         h.force(q, f);
     } else if constexpr (has_force_value<H, Vec>) {
@@ -139,7 +140,7 @@ void force(const H& h, const Vec& q, Vec& f) {
 // v = dT/dp (Gould & Tobochnik eq. 3.73b), analytic when H provides it.
 template <class H, class Vec>
     requires separable_hamiltonian<H, Vec>
-void velocity(const H& h, const Vec& p, Vec& v) {
+[[gnu::always_inline]] inline void velocity(const H& h, const Vec& p, Vec& v) {
     if constexpr (has_velocity_into<H, Vec>) {
         h.velocity(p, v);
     } else if constexpr (has_velocity_value<H, Vec>) {

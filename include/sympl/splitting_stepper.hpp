@@ -9,6 +9,7 @@
 // sized once; no step allocates.
 #include <cmath>
 #include <cstdint>
+#include <concepts>
 #include <string>
 #include <utility>
 #include <vector>
@@ -49,8 +50,15 @@ public:
 
     splitting_stepper(H hamiltonian, table method, stepper_options options = {})
         : h_(std::move(hamiltonian)), table_(std::move(method)), options_(options) {
-        for (const substep& s : table_.substeps())
-            ops_.push_back({s.kind == substep::kick, static_cast<scalar>(s.weight), scalar(0)});
+        const auto ops = table_.substeps();  // canonical: kinds alternate, no zero weights
+        // Valid tables hold at least one kick and one drift (both sum to 1).
+        first_is_kick_ = ops.front().kind == substep::kick;
+        last_is_kick_ = ops.back().kind == substep::kick;
+        joined_ = ops.size() > 1 && ops.front().kind == ops.back().kind;
+        for (const substep& o : ops) weights_.push_back(static_cast<scalar>(o.weight));
+        for (std::size_t k = 1; k < ops.size(); ++k) (ops[k].kind == substep::kick ? tail_kicks_ : tail_drifts_) += 1;
+        body_.resize(joined_ ? ops.size() - 1 : ops.size());
+        tail_.resize(ops.size() - 1);
         if constexpr (State::dimension != Eigen::Dynamic) size_workspace(State::dimension);
     }
 
@@ -114,12 +122,6 @@ public:
     const stepper_options& options() const { return options_; }
 
 private:
-    struct op {
-        bool is_kick;
-        scalar weight;
-        scalar step;  // weight * dt of the current run
-    };
-
     void check_step(const State& x, scalar dt) {
         using std::isfinite;
         if (!isfinite(dt) || dt == scalar(0))
@@ -165,70 +167,90 @@ private:
         y = sum_;
     }
 
-    // The generic loop: n steps of the table. Flags and counters live in
-    // registers during the run (a fresh force is needed only after q moved);
-    // the sub-step sizes weight*dt are computed once per run, and the choice of
-    // compensated summation once, outside the loop.
+    // The generic loop. A table's sub-steps s0 .. s(L-1) alternate between
+    // kick and drift (tables are canonical), and n steps are the stream
+    //     s0,  (s1 .. s(L-1), s0) n - 1 times,  s1 .. s(L-1)
+    // in which a table that ends with the kind it starts with (leapfrog KDK: a
+    // half kick at each end) has s(L-1), s0 joined into one sub-step of the
+    // summed size: one pass over the state less per step, which is what
+    // memory-bound systems pay for. Every sub-step after s0 follows one of the
+    // other kind, so it always needs a fresh force (or velocity): the loop
+    // holds no test of a sub-step's kind or of a flag, and s0 alone reuses the
+    // force of the previous run when resumed. Sub-step sizes weight*dt are
+    // computed once per run; small fixed-size states, their force and velocity
+    // run in locals the compiler keeps in registers (no aliasing with the
+    // caller's state or the workspace). Everything here is forced inline: in a
+    // large translation unit GCC otherwise leaves the per-sub-step calls out
+    // of line whatever the user's flags.
     void run(State& x, scalar dt, std::size_t n, bool resume) {
-        for (std::size_t k = 0; k < ops_.size(); ++k) ops_[k].step = ops_[k].weight * dt;
+        if (n == 0) {
+            if (!resume) force_fresh_ = velocity_fresh_ = false;
+            return;
+        }
+        const std::size_t L = weights_.size();
+        for (std::size_t k = 1; k < L; ++k) body_[k - 1] = tail_[k - 1] = weights_[k] * dt;
+        const scalar first = weights_[0] * dt;
+        if constexpr (reference_velocity) velocity_is_p_ = &h_.velocity(x.p) == &x.p;
+        body_.back() = joined_ ? weights_[L - 1] * dt + first : first;
         if constexpr (State::dimension != Eigen::Dynamic) {
-            // Small fixed-size states run in locals the compiler keeps in
-            // registers: no aliasing with the caller's state or the workspace.
             State y = x;
-            vector f = force_;
-            options_.compensated ? run_loop<true>(y, f, n, resume) : run_loop<false>(y, f, n, resume);
+            vector f = force_, v = velocity_;
+            options_.compensated ? run_loop<true>(y, f, v, first, n, resume) : run_loop<false>(y, f, v, first, n, resume);
             x = y;
             force_ = f;
+            velocity_ = v;
         } else {
-            options_.compensated ? run_loop<true>(x, force_, n, resume) : run_loop<false>(x, force_, n, resume);
+            options_.compensated ? run_loop<true>(x, force_, velocity_, first, n, resume)
+                                 : run_loop<false>(x, force_, velocity_, first, n, resume);
         }
     }
 
     template <bool Compensated>
-    void run_loop(State& x, vector& f, std::size_t n, bool resume) {
-        bool force_fresh = resume && force_fresh_, velocity_fresh = resume && velocity_fresh_;
+    [[gnu::always_inline]] inline void run_loop(State& x, vector& f, vector& v, scalar first, std::size_t n, bool resume) {
+        // s0, reusing what the previous run left when it is still valid.
         std::uint64_t forces = 0, velocities = 0;
-        const op* const first = ops_.data();
-        const op* const last = first + ops_.size();
-        const auto apply = [&](const op& s, scalar h) {
-            if (s.is_kick) {
-                if (!force_fresh) {
-                    force(h_, x.q, f);
-                    ++forces;
-                    force_fresh = true;
-                }
-                kick<Compensated>(x, f, h);
-                velocity_fresh = false;
-            } else {
-                velocities += drift<Compensated>(x, h, velocity_fresh);
-                force_fresh = false;
-            }
-        };
-        // When a table ends with the kind of sub-step it starts with (leapfrog
-        // KDK: a half kick at each end), the end of one step and the start of
-        // the next are one sub-step of the summed size: one pass over the
-        // state less per step, which is what memory-bound systems pay for.
-        const bool join = n > 1 && last - first > 1 && first->is_kick == (last - 1)->is_kick;
-        if (!join) {
-            for (std::size_t i = 0; i < n; ++i)
-                for (const op* s = first; s != last; ++s) apply(*s, s->step);
+        if (first_is_kick_) {
+            if (!(resume && force_fresh_)) force(h_, x.q, f), ++forces;
+            kick<Compensated>(x, f, first);
         } else {
-            const scalar joined = (last - 1)->step + first->step;
-            for (const op* s = first; s != last - 1; ++s) apply(*s, s->step);
-            for (std::size_t i = 1; i < n; ++i) {
-                apply(*first, joined);
-                for (const op* s = first + 1; s != last - 1; ++s) apply(*s, s->step);
-            }
-            apply(*(last - 1), (last - 1)->step);
+            const bool reuse = resume && velocity_fresh_ && !fused_velocity;
+            reuse ? drift_with<Compensated>(x, v, first) : drift<Compensated>(x, v, first);
+            velocities += !reuse;
         }
-        force_fresh_ = force_fresh;
-        velocity_fresh_ = velocity_fresh;
+        const bool body_starts_with_kick = !first_is_kick_;
+        for (std::size_t i = 1; i < n; ++i) alternate<Compensated>(x, f, v, body_.data(), body_.size(), body_starts_with_kick);
+        alternate<Compensated>(x, f, v, tail_.data(), tail_.size(), body_starts_with_kick);
+        // Counted, not tallied in the loop: the body and the tail hold fixed numbers of each kind.
+        const std::size_t body_kicks = tail_kicks_ + (joined_ ? 0 : first_is_kick_);
+        const std::size_t body_drifts = tail_drifts_ + (joined_ ? 0 : !first_is_kick_);
+        forces += (n - 1) * body_kicks + tail_kicks_;
+        velocities += (n - 1) * body_drifts + tail_drifts_;
+        force_fresh_ = last_is_kick_;
+        velocity_fresh_ = !last_is_kick_ && !fused_velocity;
         force_evaluations_ += forces;
         velocity_evaluations_ += velocities;
     }
 
+    // count alternating sub-steps of sizes h[0..count), the first a kick or a
+    // drift, each with a fresh force or velocity.
     template <bool Compensated>
-    void kick(State& x, const vector& f, scalar h) {
+    [[gnu::always_inline]] inline void alternate(State& x, vector& f, vector& v, const scalar* h, std::size_t count,
+                                                 bool starts_with_kick) {
+        std::size_t i = 0;
+        if (!starts_with_kick && count > 0) drift<Compensated>(x, v, h[i++]);
+        for (; i + 1 < count; i += 2) {
+            force(h_, x.q, f);
+            kick_and_drift<Compensated>(x, f, v, h[i], h[i + 1]);
+        }
+        if (i < count) {
+            force(h_, x.q, f);
+            kick<Compensated>(x, f, h[i]);
+        }
+    }
+
+    // p += h * force (Gould & Tobochnik eq. 3.74, the p half).
+    template <bool Compensated>
+    [[gnu::always_inline]] inline void kick(State& x, const vector& f, scalar h) {
         if constexpr (Compensated) {
             increment_ = h * f;
             add_compensated(x.p, p_error_);
@@ -237,38 +259,76 @@ private:
         }
     }
 
-    // Returns the number of velocity evaluations made (0 or 1).
+    // A kick and the drift after it. On a large state with velocity(p)
+    // returning p itself (unit masses), in one pass over q, p and f instead of
+    // two: memory-bound systems pay per pass. The same operations in the same
+    // order as the two passes (tests/test_splitting_stepper.cpp compares them).
     template <bool Compensated>
-    int drift(State& x, scalar h, bool& velocity_fresh) {
-        if constexpr (has_velocity_value<H, vector> && !has_velocity_into<H, vector>) {
-            // An analytic velocity that returns an expression (e.g. p / m) fuses into the update.
+    [[gnu::always_inline]] inline void kick_and_drift(State& x, const vector& f, vector& v, scalar hk, scalar hd) {
+        if constexpr (!Compensated && reference_velocity && State::dimension == Eigen::Dynamic) {
+            if (!velocity_is_p_) {
+                kick<Compensated>(x, f, hk);
+                drift<Compensated>(x, v, hd);
+                return;
+            }
+            scalar* const q = x.q.data();
+            scalar* const p = x.p.data();
+            const scalar* const g = f.data();
+            const Eigen::Index n = x.q.size();
+            for (Eigen::Index i = 0; i < n; ++i) {
+                p[i] += hk * g[i];
+                q[i] += hd * p[i];
+            }
+        } else {
+            kick<Compensated>(x, f, hk);
+            drift<Compensated>(x, v, hd);
+        }
+    }
+
+    // velocity(p) returns a reference: to p itself (dT/dp = p) when run()
+    // finds velocity_is_p_.
+    static constexpr bool reference_velocity = requires(const H& h, const vector& p) {
+        { h.velocity(p) } -> std::same_as<const vector&>;
+    };
+
+    // An analytic velocity that returns an expression (e.g. p / m) fuses into the drift.
+    static constexpr bool fused_velocity = has_velocity_value<H, vector> && !has_velocity_into<H, vector>;
+
+    // q += h * dT/dp(p) with dT/dp evaluated afresh (Gould & Tobochnik eq. 3.74, the q half).
+    template <bool Compensated>
+    [[gnu::always_inline]] inline void drift(State& x, vector& v, scalar h) {
+        if constexpr (fused_velocity) {
             if constexpr (Compensated) {
                 increment_.noalias() = h * h_.velocity(x.p);
                 add_compensated(x.q, q_error_);
             } else {
                 x.q.noalias() += h * h_.velocity(x.p);
             }
-            return 1;
+        } else {
+            velocity(h_, x.p, v);
+            drift_with<Compensated>(x, v, h);
         }
-        int evaluated = 0;
-        if (!velocity_fresh) {
-            velocity(h_, x.p, velocity_);
-            velocity_fresh = true;
-            evaluated = 1;
-        }
+    }
+
+    // q += h * v with v = dT/dp(p) already at hand.
+    template <bool Compensated>
+    [[gnu::always_inline]] inline void drift_with(State& x, const vector& v, scalar h) {
         if constexpr (Compensated) {
-            increment_ = h * velocity_;
+            increment_ = h * v;
             add_compensated(x.q, q_error_);
         } else {
-            x.q += h * velocity_;
+            x.q += h * v;
         }
-        return evaluated;
     }
 
     H h_;
     table table_;
     stepper_options options_;
-    std::vector<op> ops_;
+    std::vector<scalar> weights_;      // the canonical sub-steps' weights, s0 first
+    std::vector<scalar> body_, tail_;  // sub-step sizes of the current run (see run)
+    bool first_is_kick_ = true, last_is_kick_ = true, joined_ = false;
+    bool velocity_is_p_ = false;
+    std::size_t tail_kicks_ = 0, tail_drifts_ = 0;  // kinds among s1 .. s(L-1)
     vector force_, velocity_;
     vector q_error_, p_error_, increment_, sum_;  // compensated summation only
     bool force_fresh_ = false, velocity_fresh_ = false;
