@@ -123,40 +123,64 @@ struct user_hamiltonian {
 };
 
 // ---- tight hand-written loops ---------------------------------------------
-// Leapfrog KDK, the last force of a step reused by the next.
-template <int N, class Force>
-void hand_leapfrog(double* q, double* p, double* f, long n_runtime, double dt, long steps, const Force& force) {
-    const long n = N > 0 ? N : n_runtime;
-    const double h = 0.5 * dt;
-    force(q, f);
-    for (long s = 0; s < steps; ++s) {
-        for (long i = 0; i < n; ++i) p[i] += h * f[i];
-        for (long i = 0; i < n; ++i) q[i] += dt * p[i];
-        force(q, f);
-        for (long i = 0; i < n; ++i) p[i] += h * f[i];
+// What a performance-minded user writes: the state in locals (a fixed-size
+// state lives in registers; a large one behind restrict pointers, so the
+// compiler knows the force does not write into q or p), the stages unrolled,
+// the half kicks of consecutive leapfrog steps joined and the last drift of a
+// drift-first step joined with the next step's first.
+template <int N, class Body>
+void with_local_state(double* q_io, double* p_io, long n_runtime, const Body& body) {
+    if constexpr (N > 0) {
+        std::array<double, N> q, p, f;
+        std::copy(q_io, q_io + N, q.begin());
+        std::copy(p_io, p_io + N, p.begin());
+        body(q.data(), p.data(), f.data(), long(N));
+        std::copy(q.begin(), q.end(), q_io);
+        std::copy(p.begin(), p.end(), p_io);
+    } else {
+        std::vector<double> f(static_cast<std::size_t>(n_runtime));
+        body(q_io, p_io, f.data(), n_runtime);
     }
 }
 
-// Drift-first D d0 K k0 D d1 ... K k(K-1) D dK, the last drift of a step
-// joined with the first of the next; K known at compile time.
+// Leapfrog KDK: half kick, then (drift, force, full kick) per step, less a half kick at the end.
+template <int N, class Force>
+void hand_leapfrog(double* q_io, double* p_io, long n_runtime, double dt, long steps, const Force& force) {
+    with_local_state<N>(q_io, p_io, n_runtime, [&](double* __restrict q, double* __restrict p, double* __restrict f, long n) {
+        force(q, f);
+        for (long i = 0; i < n; ++i) p[i] += 0.5 * dt * f[i];
+        for (long s = 0; s < steps; ++s) {
+            for (long i = 0; i < n; ++i) q[i] += dt * p[i];
+            force(q, f);
+            const double h = s + 1 < steps ? dt : 0.5 * dt;
+            for (long i = 0; i < n; ++i) p[i] += h * f[i];
+        }
+    });
+}
+
+// Drift-first D d0 K k0 D d1 ... K k(K-1) D dK, K known at compile time.
 template <int N, int K, class Force>
-void hand_drift_first(double* q, double* p, double* f, long n_runtime, double dt, long steps,
+void hand_drift_first(double* q_io, double* p_io, long n_runtime, double dt, long steps,
                       const std::array<double, K + 1>& drift, const std::array<double, K>& kick, const Force& force) {
-    const long n = N > 0 ? N : n_runtime;
     std::array<double, K + 1> hd;
     std::array<double, K> hk;
     for (int k = 0; k <= K; ++k) hd[k] = drift[k] * dt;
     for (int k = 0; k < K; ++k) hk[k] = kick[k] * dt;
-    const double joined = hd[K] + hd[0];
-    for (long i = 0; i < n; ++i) q[i] += hd[0] * p[i];
-    for (long s = 0; s < steps; ++s) {
-        for (int k = 0; k < K; ++k) {
+    with_local_state<N>(q_io, p_io, n_runtime, [&](double* __restrict q, double* __restrict p, double* __restrict f, long n) {
+        for (long i = 0; i < n; ++i) q[i] += hd[0] * p[i];
+        for (long s = 0; s < steps; ++s) {
+#pragma GCC unroll 16
+            for (int k = 0; k < K - 1; ++k) {
+                force(q, f);
+                for (long i = 0; i < n; ++i) p[i] += hk[k] * f[i];
+                for (long i = 0; i < n; ++i) q[i] += hd[k + 1] * p[i];
+            }
             force(q, f);
-            for (long i = 0; i < n; ++i) p[i] += hk[k] * f[i];
-            const double d = k + 1 < K ? hd[k + 1] : (s + 1 < steps ? joined : hd[K]);
+            for (long i = 0; i < n; ++i) p[i] += hk[K - 1] * f[i];
+            const double d = s + 1 < steps ? hd[K] + hd[0] : hd[K];
             for (long i = 0; i < n; ++i) q[i] += d * p[i];
         }
-    }
+    });
 }
 
 // ---- Odeint: the same table through its Nystrom base (drift, then kick, per stage) ----
@@ -244,7 +268,7 @@ void run_problem(const char* problem, const Kernel& kernel, const std::vector<do
         const sympl::table t = sympl::method(sc.table);
         std::vector<contender> cs;
         State x = to_state();
-        C q = to_container(q0), p = to_container(p0), f = to_container(q0);
+        C q = to_container(q0), p = to_container(p0);
         auto raw = sympl::make_stepper<State>(user_hamiltonian<Kernel, force_style::raw_pointers>{kernel}, t);
         auto eig = sympl::make_stepper<State>(user_hamiltonian<Kernel, force_style::eigen_expressions>{kernel}, t);
         const auto reset_state = [&, x0 = x] { x = x0; };
@@ -254,7 +278,7 @@ void run_problem(const char* problem, const Kernel& kernel, const std::vector<do
         // hand
         if (leapfrog) {
             cs.push_back({"hand leapfrog", reset_arrays, [&](long k) {
-                              hand_leapfrog<N>(q.data(), p.data(), f.data(), n, dt, k, kernel);
+                              hand_leapfrog<N>(q.data(), p.data(), n, dt, k, kernel);
                               return q[0];
                           }});
         }
@@ -272,12 +296,12 @@ void run_problem(const char* problem, const Kernel& kernel, const std::vector<do
             }
             if (kicks == 5)
                 cs.push_back({"hand drift-first, 5 kicks", reset_arrays, [&](long k) {
-                                  hand_drift_first<N, 5>(q.data(), p.data(), f.data(), n, dt, k, d5, k5, kernel);
+                                  hand_drift_first<N, 5>(q.data(), p.data(), n, dt, k, d5, k5, kernel);
                                   return q[0];
                               }});
             else
                 cs.push_back({"hand drift-first, 10 kicks", reset_arrays, [&](long k) {
-                                  hand_drift_first<N, 10>(q.data(), p.data(), f.data(), n, dt, k, d10, k10, kernel);
+                                  hand_drift_first<N, 10>(q.data(), p.data(), n, dt, k, d10, k10, kernel);
                                   return q[0];
                               }});
         }

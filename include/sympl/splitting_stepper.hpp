@@ -255,7 +255,11 @@ private:
             increment_ = h * f;
             add_compensated(x.p, p_error_);
         } else {
-            x.p += h * f;
+            if constexpr (small_fixed) {
+                for (int i = 0; i < State::dimension; ++i) x.p[i] += h * f[i];
+            } else {
+                x.p += h * f;
+            }
         }
     }
 
@@ -291,6 +295,13 @@ private:
         { h.velocity(p) } -> std::same_as<const vector&>;
     };
 
+    // Small fixed-size states are updated component by component: a force
+    // written through q.data() and f.data() reads and writes single numbers,
+    // and updates of the same shape let the compiler keep q, p and f in
+    // registers; Eigen's packet updates would force them through the stack
+    // at every sub-step.
+    static constexpr bool small_fixed = State::dimension != Eigen::Dynamic && State::dimension <= 16;
+
     // An analytic velocity that returns an expression (e.g. p / m) fuses into the drift.
     static constexpr bool fused_velocity = has_velocity_value<H, vector> && !has_velocity_into<H, vector>;
 
@@ -302,7 +313,12 @@ private:
                 increment_.noalias() = h * h_.velocity(x.p);
                 add_compensated(x.q, q_error_);
             } else {
-                x.q.noalias() += h * h_.velocity(x.p);
+                if constexpr (small_fixed && reference_velocity) {
+                    const vector& v = h_.velocity(x.p);
+                    for (int i = 0; i < State::dimension; ++i) x.q[i] += h * v[i];
+                } else {
+                    x.q.noalias() += h * h_.velocity(x.p);
+                }
             }
         } else {
             velocity(h_, x.p, v);
@@ -317,7 +333,11 @@ private:
             increment_ = h * v;
             add_compensated(x.q, q_error_);
         } else {
-            x.q += h * v;
+            if constexpr (small_fixed) {
+                for (int i = 0; i < State::dimension; ++i) x.q[i] += h * v[i];
+            } else {
+                x.q += h * v;
+            }
         }
     }
 
