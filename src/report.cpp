@@ -36,6 +36,7 @@ struct row {
     double final_error = -1;
     double loop_area_error = -1;  // only where the scene asks for it
     std::vector<double> times;    // one per timing round
+    double setting() const { return dt > 0 ? dt : tolerance; }  // the sweep's value: dt or tolerance
 };
 
 std::string csv_number(double v) { return v < 0 ? "" : format_number(v, 6); }
@@ -108,7 +109,7 @@ std::vector<work_point> curve_of(const std::vector<row>& rows, const scene& s, c
     std::vector<work_point> curve;
     for (const row& r : rows)
         if (r.s == &s && r.method == &m && r.r.stable && r.final_error >= 0)
-            curve.push_back({r.r.seconds, r.final_error, r.dt > 0 ? r.dt : r.tolerance});
+            curve.push_back({r.r.seconds, r.final_error, r.setting()});
     return curve;
 }
 
@@ -278,10 +279,10 @@ void run_report(const std::vector<scene>& scenes, const report_options& options,
         const scene& s = *r.s;
         const problem& p = problem_of_row(r);
         const std::string head = "[" + std::to_string(i + 1) + "/" + std::to_string(rows.size()) + "] " + s.name + ": " +
-                                 r.method->name + " " + format_number(r.dt > 0 ? r.dt : r.tolerance);
+                                 r.method->name + " " + format_number(r.setting());
         bar.show(head);
         run_request rq;
-        rq.dt = r.dt > 0 ? r.dt : r.tolerance;
+        rq.dt = r.setting();
         rq.tolerance = rq.dt;
         rq.energy = p.hamiltonian;
         rq.timing_repeats = 0;
@@ -301,7 +302,7 @@ void run_report(const std::vector<scene>& scenes, const report_options& options,
             row& r = rows[i];
             if (!mine(i) || !r.r.stable) continue;
             run_request rq;
-            rq.dt = r.dt > 0 ? r.dt : r.tolerance;
+            rq.dt = r.setting();
             rq.tolerance = rq.dt;
             rq.observed = false;
             rq.timing_repeats = 1;

@@ -270,23 +270,19 @@ private:
     template <bool Compensated>
     [[gnu::always_inline]] inline void kick_and_drift(State& x, const vector& f, vector& v, scalar hk, scalar hd) {
         if constexpr (!Compensated && reference_velocity && State::dimension == Eigen::Dynamic) {
-            if (!velocity_is_p_) {
-                kick<Compensated>(x, f, hk);
-                drift<Compensated>(x, v, hd);
+            if (velocity_is_p_) {
+                scalar* const q = x.q.data();
+                scalar* const p = x.p.data();
+                const scalar* const g = f.data();
+                for (Eigen::Index i = 0, n = x.q.size(); i < n; ++i) {
+                    p[i] += hk * g[i];
+                    q[i] += hd * p[i];
+                }
                 return;
             }
-            scalar* const q = x.q.data();
-            scalar* const p = x.p.data();
-            const scalar* const g = f.data();
-            const Eigen::Index n = x.q.size();
-            for (Eigen::Index i = 0; i < n; ++i) {
-                p[i] += hk * g[i];
-                q[i] += hd * p[i];
-            }
-        } else {
-            kick<Compensated>(x, f, hk);
-            drift<Compensated>(x, v, hd);
         }
+        kick<Compensated>(x, f, hk);
+        drift<Compensated>(x, v, hd);
     }
 
     // velocity(p) returns a reference: to p itself (dT/dp = p) when run()
@@ -314,8 +310,8 @@ private:
                 add_compensated(x.q, q_error_);
             } else {
                 if constexpr (small_fixed && reference_velocity) {
-                    const vector& v = h_.velocity(x.p);
-                    for (int i = 0; i < State::dimension; ++i) x.q[i] += h * v[i];
+                    const vector& dTdp = h_.velocity(x.p);
+                    for (int i = 0; i < State::dimension; ++i) x.q[i] += h * dTdp[i];
                 } else {
                     x.q.noalias() += h * h_.velocity(x.p);
                 }
