@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "error.hpp"
+#include "processing.hpp"
 #include "table.hpp"
 
 namespace sympl {
@@ -348,6 +349,53 @@ inline std::vector<table> order_8_and_10_methods() {
     };
 }
 
+// Processed compositions of the kick-drift-kick leapfrog: the kernel is a
+// symmetric composition (outer weights, outermost first, as leapfrog_composition),
+// the processor a composition of leapfrogs with step fractions -g_k .. -g_1,
+// g_k .. g_1 for the tabulated g_1 .. g_k (g_1 = -(g_2 + ... + g_k), so each half
+// sums to 0; the source computes one of them from the others). The processor's order of application (last tabulated fraction
+// first) was settled by measuring the effective order (tests/test_processing.cpp);
+// the other order leaves the kernel's order 4. Digits as tabulated in Blanes,
+// Casas & Murua 2024, Acta Numerica 33, 1, Table 8.1.
+inline processed_method processed_leapfrog(std::string name, const K& kernel_outer, K processor_half, int order,
+                                           std::string citation) {
+    static const table lf = palindrome("leapfrog_kdk", kick_first, {}, 2, "");
+    // The one fraction listed as 0 is the one the source computes from the others.
+    coefficient rest = 0;
+    std::size_t computed = 0;
+    for (std::size_t i = 0; i < processor_half.size(); ++i)
+        if (processor_half[i] == 0) computed = i;
+        else rest += processor_half[i];
+    processor_half[computed] = -rest;
+    K fractions;
+    for (auto g = processor_half.rbegin(); g != processor_half.rend(); ++g) fractions.push_back(-*g);
+    for (auto g = processor_half.rbegin(); g != processor_half.rend(); ++g) fractions.push_back(*g);
+    table kernel = compose_symmetric(lf, kernel_outer, name + "_kernel", 4, citation).with_family("processed");
+    return make_processed(std::move(name), std::move(kernel), lf, fractions, order, std::move(citation));
+}
+
+inline std::vector<processed_method> processed_methods() {
+    const std::string bcm = "Blanes, Casas & Murua 2006, SIAM J. Sci. Comput. 27, 1817";
+    const coefficient a1 = 0.1705768865009222157L, b1 = 0.125696288720106L, c1 = 0.168L;
+    return {
+        processed_leapfrog("blanes_2001_p6", {0.513910778424374L, 0.364193022833858L, -0.867423280969274L},
+                           {0, -0.461165940466494L, -0.074332422810238L, 0.384998538774070L, 0.375012038697862L}, 6,
+                           "Blanes 2001, Appl. Numer. Math. 37, 289 (7-stage kernel, effective order 6)"),
+        processed_leapfrog("bcm_2006_p6_11", {a1, a1, a1, a1, -0.423366140892658048L},
+                           {0, -0.20621953139126L, 0.23651387483203L, 0.09086982276241L, 0.24687306977659L, -0.1L}, 6,
+                           bcm + " (11-stage kernel, effective order 6)"),
+        processed_leapfrog("bcm_2006_p6_13", {b1, b1, b1, b1, 0.148070660114965L, -0.350856370823828L},
+                           {0.1L, 0.225080298761176L, 0.191244694511161L, -0.212763792194890L, -0.09660157306582295L, 0},
+                           6, bcm + " (13-stage kernel, effective order 6)"),
+        processed_leapfrog("bcm_2006_p8", {c1, c1, 0.585550530805562L, -0.460090457516872L, 0.172863148729731L,
+                                           0.179664539695039L},
+                           {0, -0.008488123494574411L, -0.337188967354338L, 0.333987768164597L, 0.588351189003849L,
+                            0.162324207599241L, -0.511744926116413L, 0.236885952363384L, 0.598212975943381L,
+                            -0.543415765371656L},
+                           8, bcm + " (13-stage kernel, effective order 8)"),
+    };
+}
+
 }  // namespace detail
 
 // All catalog entries, built once, in order of increasing order.
@@ -388,6 +436,22 @@ inline const table& method(const std::string& name) {
     std::string valid;
     for (const std::string& n : catalog_names()) valid += (valid.empty() ? "" : ", ") + n;
     throw invalid_argument("unknown method '" + name + "'; expected one of: " + valid);
+}
+
+// The processed methods (processing.hpp), built once.
+inline const std::vector<processed_method>& processed_catalog() {
+    static const std::vector<processed_method> entries = detail::processed_methods();
+    return entries;
+}
+
+// The processed method called `name`; an unknown name lists the valid ones.
+inline const processed_method& processed(const std::string& name) {
+    std::string valid;
+    for (const processed_method& m : processed_catalog()) {
+        if (m.name == name) return m;
+        valid += (valid.empty() ? "" : ", ") + m.name;
+    }
+    throw invalid_argument("unknown processed method '" + name + "'; expected one of: " + valid);
 }
 
 }  // namespace sympl

@@ -21,6 +21,7 @@
 #include "convergence.hpp"
 #include "error.hpp"
 #include "phase_space.hpp"
+#include "processing.hpp"
 #include "splitting_stepper.hpp"
 #include "table.hpp"
 
@@ -31,12 +32,20 @@ using quad = boost::multiprecision::number<
     boost::multiprecision::cpp_bin_float<113, boost::multiprecision::digit_base_2, void, std::int16_t, -16382, 16383>,
     boost::multiprecision::et_off>;
 
-// Measured order of `method` on H from x0 over [0, t_end].
-template <class H, int D>
-order_measurement measure_order(const table& method, const H& h, const phase_space<quad, D>& x0, const quad& t_end,
+namespace detail {
+template <class H, class State>
+splitting_stepper<H, State> stepper_of(const table& method, const H& h) { return {h, method}; }
+template <class H, class State>
+processed_stepper<H, State> stepper_of(const processed_method& method, const H& h) { return {h, method}; }
+}  // namespace detail
+
+// Measured order of `method` (a table or a processed method, whose output is
+// the processed state) on H from x0 over [0, t_end].
+template <class Method, class H, int D>
+order_measurement measure_order(const Method& method, const H& h, const phase_space<quad, D>& x0, const quad& t_end,
                                 const order_options& options = {}) {
     using State = phase_space<quad, D>;
-    splitting_stepper<H, State> stepper(h, method);
+    auto stepper = detail::stepper_of<H, State>(method, h);
     return measure_order(
         [&](std::size_t n) {
             State x = x0;
@@ -103,8 +112,10 @@ struct kepler : quadratic_kinetic {
 };
 }  // namespace order_problems
 
-inline order_measurement measure_order(const table& method, order_problem problem = order_problem::pendulum,
-                                       const order_options& options = {}) {
+template <class Method>
+    requires std::same_as<Method, table> || std::same_as<Method, processed_method>
+order_measurement measure_order(const Method& method, order_problem problem = order_problem::pendulum,
+                                const order_options& options = {}) {
     using V1 = Eigen::Matrix<quad, 1, 1>;
     using V2 = Eigen::Matrix<quad, 2, 1>;
     const quad q0 = quad(12) / 10;
