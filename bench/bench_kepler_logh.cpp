@@ -15,10 +15,13 @@
 #include <cstdlib>
 #include <cstring>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <boost/numeric/odeint.hpp>
+
+#include "cheapest_run.hpp"
 
 #include <sympl/sympl.hpp>
 #include <sympl/hamiltonians/kepler.hpp>
@@ -36,23 +39,6 @@ struct contender {
     double loose, tight;                  // the range searched
     std::function<K(double)> run;         // final state for a parameter
 };
-
-double seconds_of(const std::function<void()>& f, int repeats) {
-    std::vector<double> t;
-    for (int r = 0; r < repeats; ++r) {
-        int n = 0;
-        const auto start = std::chrono::steady_clock::now();
-        double elapsed = 0;
-        do {
-            f();
-            ++n;
-            elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        } while (elapsed < 0.02);
-        t.push_back(elapsed / n);
-    }
-    std::sort(t.begin(), t.end());
-    return t[t.size() / 2];
-}
 
 }  // namespace
 
@@ -146,30 +132,13 @@ int main(int argc, char** argv) {
             const double d = sympl::max_difference(x, exact) / scale;
             return std::isfinite(d) ? d : 1e300;
         };
-        // Scan from loose to tight on a log grid for the first parameter that
-        // meets the target (too small a step can miss it again through
-        // rounding), then bisect on the logarithm between it and the one before.
-        const int grid = 24;
-        double lo = 0, hi = 0;
-        bool found = false;
-        for (int i = 0; i <= grid && !found; ++i) {
-            const double p = std::log(c.loose) + (std::log(c.tight) - std::log(c.loose)) * i / grid;
-            if (error(std::exp(p)) <= target) {
-                found = true;
-                lo = p;
-                hi = i == 0 ? p : std::log(c.loose) + (std::log(c.tight) - std::log(c.loose)) * (i - 1) / grid;
-            }
-        }
+        const std::optional<double> found = sympl::bench::loosest_meeting(error, c.loose, c.tight, target, 24);
         if (!found) {
             std::printf("%-40s %14s\n", c.name.c_str(), "not reached");
             continue;
         }
-        for (int i = 0; i < 40 && std::fabs(hi - lo) > 0.01; ++i) {
-            const double mid = (lo + hi) / 2;
-            (error(std::exp(mid)) <= target ? lo : hi) = mid;
-        }
-        const double p = std::exp(lo);
-        const double seconds = seconds_of([&] { (void)c.run(p); }, repeats);
+        const double p = *found;
+        const double seconds = sympl::bench::seconds_of([&] { (void)c.run(p); }, repeats);
         results.push_back({c.name, p, error(p), seconds, c.name.rfind("odeint", 0) != 0});
     }
     double best = 1e300;
