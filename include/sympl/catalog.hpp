@@ -352,15 +352,15 @@ inline std::vector<table> order_8_and_10_methods() {
 // Processed compositions of the kick-drift-kick leapfrog: the kernel is a
 // symmetric composition (outer weights, outermost first, as leapfrog_composition),
 // the processor a composition of leapfrogs with step fractions -g_k .. -g_1,
-// g_k .. g_1 for the tabulated g_1 .. g_k (g_1 = -(g_2 + ... + g_k), so each half
-// sums to 0; the source computes one of them from the others). The processor's order of application (last tabulated fraction
-// first) was settled by measuring the effective order (tests/test_processing.cpp);
-// the other order leaves the kernel's order 4. Digits as tabulated in Blanes,
-// Casas & Murua 2024, Acta Numerica 33, 1, Table 8.1.
+// g_k .. g_1 for the tabulated g_1 .. g_k, which sum to 0 (the source computes
+// one of them from the others; it is listed as 0 here). The processor's order
+// of application (last tabulated fraction first) was settled by measuring the
+// effective order (tests/test_processing.cpp); the other order leaves the
+// kernel's order 4. Digits as tabulated in Blanes, Casas & Murua 2024, Acta
+// Numerica 33, 1, Table 8.1.
 inline processed_method processed_leapfrog(std::string name, const K& kernel_outer, K processor_half, int order,
                                            std::string citation) {
     static const table lf = palindrome("leapfrog_kdk", kick_first, {}, 2, "");
-    // The one fraction listed as 0 is the one the source computes from the others.
     coefficient rest = 0;
     std::size_t computed = 0;
     for (std::size_t i = 0; i < processor_half.size(); ++i)
