@@ -52,6 +52,9 @@ struct contender {
     std::function<double(double)> run;  // max relative energy error for a parameter
 };
 
+// |e - e0| / |e0|; a non-finite energy counts as a failure (std::max would skip a NaN).
+double relative_error(double e, double e0) { return std::isfinite(e) ? std::fabs(e - e0) / std::fabs(e0) : 1e300; }
+
 // A problem as both libraries see it: sympl's Hamiltonian and state, and
 // Odeint's first-order state y = (q, p) with its right-hand side and energy.
 template <class H, class X, class Y>
@@ -69,8 +72,7 @@ template <class H, class X, class Y>
 std::vector<contender> contenders(const problem<H, X, Y>& pr) {
     std::vector<contender> all;
     const double e0 = sympl::energy(pr.h, pr.x0), t_end = pr.t_end;
-    // A non-finite energy counts as a failure (std::max would skip a NaN).
-    const auto relative = [e0](double e) { return std::isfinite(e) ? std::fabs(e - e0) / std::fabs(e0) : 1e300; };
+    const auto relative = [e0](double e) { return relative_error(e, e0); };
     // sympl: n steps of t_end/n, observed every n/100 steps (the driver's observer).
     const auto sympl_run = [&pr, relative, t_end](auto make_stepper) {
         return [&pr, relative, t_end, make_stepper](double dt) {
@@ -189,7 +191,7 @@ void add_odeint_rkn(std::vector<contender>& all, const problem<H, X, Y>& pr, std
             auto s = make();
             Q q = to_q(pr.x0.q), p = to_q(pr.x0.p);
             const auto rhs = [&](const Q& qq, Q& f) { force(qq, f); };
-            const auto relative = [e0](double e) { return std::isfinite(e) ? std::fabs(e - e0) / std::fabs(e0) : 1e300; };
+            const auto relative = [e0](double e) { return relative_error(e, e0); };
             double worst = relative(energy_qp(q, p));
             for (std::size_t i = 1; i <= n && worst < 1e300; ++i) {
                 s.do_step(rhs, std::make_pair(std::ref(q), std::ref(p)), 0.0, h);

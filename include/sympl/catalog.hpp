@@ -58,11 +58,17 @@ inline table palindrome(std::string name, substep::kind_t first, const K& half, 
     return table::from_substeps(std::move(name), all, order, std::move(citation), requirement);
 }
 
+// The kick-drift-kick leapfrog, the base of the compositions below.
+inline const table& leapfrog_base() {
+    static const table lf = palindrome("leapfrog_kdk", kick_first, {}, 2, "");
+    return lf;
+}
+
 // A symmetric composition of the kick-drift-kick leapfrog with the published
 // outer weights (outermost first); the centre weight is 1 - 2 sum(outer).
 inline table leapfrog_composition(std::string name, const K& outer, int order, std::string citation) {
-    static const table lf = palindrome("leapfrog_kdk", kick_first, {}, 2, "");
-    return compose_symmetric(lf, outer, std::move(name), order, std::move(citation)).with_family("composition");
+    return compose_symmetric(leapfrog_base(), outer, std::move(name), order, std::move(citation))
+        .with_family("composition");
 }
 
 // McLachlan & Atela 1992, order 3: closed form of their optimal 3-stage method.
@@ -360,7 +366,7 @@ inline std::vector<table> order_8_and_10_methods() {
 // Numerica 33, 1, Table 8.1.
 inline processed_method processed_leapfrog(std::string name, const K& kernel_outer, K processor_half, int order,
                                            std::string citation) {
-    static const table lf = palindrome("leapfrog_kdk", kick_first, {}, 2, "");
+    const table& lf = leapfrog_base();
     coefficient rest = 0;
     std::size_t computed = 0;
     for (std::size_t i = 0; i < processor_half.size(); ++i)

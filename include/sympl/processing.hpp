@@ -61,8 +61,7 @@ inline processed_method make_processed(std::string name, table kernel, const tab
                             "; expected 0 (a processor is a change of variables, not a step in time)");
     std::vector<substep> ops;
     for (coefficient w : weights) detail::append_scaled(ops, base, w);
-    processed_method m{std::move(name), std::move(kernel), detail::canonical(std::move(ops)), order, std::move(citation)};
-    return m;
+    return {std::move(name), std::move(kernel), detail::canonical(std::move(ops)), order, std::move(citation)};
 }
 
 // Runs a processed_method. Same calls as splitting_stepper (step, steps,
