@@ -15,7 +15,10 @@
 //   sympl raw     sympl::splitting_stepper::steps(x, dt, n) on a user-style
 //                 Hamiltonian whose force(q, f) calls the kernel through
 //                 q.data() and f.data(), velocity(p) returning p;
-//   sympl eigen   the same with the force written as Eigen expressions;
+//   hand Eigen    (2-D problems) the same loops with q, p, f in fixed-size
+//                 Eigen vectors and the force written as Eigen expressions;
+//   sympl eigen   the same with the force written as Eigen expressions
+//                 (measured against hand Eigen where there is one);
 //   sympl step()  the raw-pointer Hamiltonian, one step() call per step
 //                 (each call checks the state: a pass over it);
 //   odeint        do_step per step, the momentum derivative calling the kernel.
@@ -183,6 +186,49 @@ void hand_drift_first(double* q_io, double* p_io, long n_runtime, double dt, lon
     });
 }
 
+// The same two loops for a user who keeps a small state in Eigen vectors and
+// writes the force as Eigen expressions: q, p, f fixed-size locals, updated by
+// Eigen expressions. The stepper's cost for that force is measured against this.
+template <int N, class Force>
+void hand_leapfrog_eigen(double* q_io, double* p_io, double dt, long steps, const Force& force) {
+    using Vec = Eigen::Matrix<double, N, 1>;
+    Vec q = Eigen::Map<Vec>(q_io), p = Eigen::Map<Vec>(p_io), f;
+    force(q, f);
+    p += 0.5 * dt * f;
+    for (long s = 0; s < steps; ++s) {
+        q += dt * p;
+        force(q, f);
+        p += (s + 1 < steps ? dt : 0.5 * dt) * f;
+    }
+    std::copy(q.data(), q.data() + N, q_io);
+    std::copy(p.data(), p.data() + N, p_io);
+}
+
+template <int N, int K, class Force>
+void hand_drift_first_eigen(double* q_io, double* p_io, double dt, long steps, const std::array<double, K + 1>& drift,
+                            const std::array<double, K>& kick, const Force& force) {
+    using Vec = Eigen::Matrix<double, N, 1>;
+    std::array<double, K + 1> hd;
+    std::array<double, K> hk;
+    for (int k = 0; k <= K; ++k) hd[k] = drift[k] * dt;
+    for (int k = 0; k < K; ++k) hk[k] = kick[k] * dt;
+    Vec q = Eigen::Map<Vec>(q_io), p = Eigen::Map<Vec>(p_io), f;
+    q += hd[0] * p;
+    for (long s = 0; s < steps; ++s) {
+#pragma GCC unroll 16
+        for (int k = 0; k < K - 1; ++k) {
+            force(q, f);
+            p += hk[k] * f;
+            q += hd[k + 1] * p;
+        }
+        force(q, f);
+        p += hk[K - 1] * f;
+        q += (s + 1 < steps ? hd[K] + hd[0] : hd[K]) * p;
+    }
+    std::copy(q.data(), q.data() + N, q_io);
+    std::copy(p.data(), p.data() + N, p_io);
+}
+
 // ---- Odeint: the same table through its Nystrom base (drift, then kick, per stage) ----
 template <std::size_t Stages, class C>
 using odeint_nystrom =
@@ -230,14 +276,20 @@ void measure(std::vector<contender>& cs, long n, int rounds) {
 
 void print(const char* problem, const char* scheme, std::vector<contender>& cs) {
     std::printf("%s, %s\n", problem, scheme);
-    double hand = 0, odeint_ns = 0;
+    // "/ hand": over the hand loop of the same force style where there is one
+    // (the 2-D problems), else over the raw-pointer hand loop.
+    const auto eigen_style = [](const contender& c) { return c.name.find("Eigen") != std::string::npos; };
+    double hand = 0, hand_eigen = 0, odeint_ns = 0;
     for (contender& c : cs) {
-        if (c.name.rfind("hand", 0) == 0) hand = c.median();
+        if (c.name.rfind("hand", 0) == 0) (eigen_style(c) ? hand_eigen : hand) = c.median();
         if (c.name.rfind("odeint", 0) == 0) odeint_ns = c.median();
     }
-    std::printf("  %-46s %11s %9s %9s\n", "", "ns/step", "/ hand", "/ odeint");
-    for (contender& c : cs)
-        std::printf("  %-46s %11.2f %9.3f %9.3f\n", c.name.c_str(), c.median(), c.median() / hand, c.median() / odeint_ns);
+    std::printf("  %-52s %11s %9s %9s\n", "", "ns/step", "/ hand", "/ odeint");
+    for (contender& c : cs) {
+        const double reference = eigen_style(c) && hand_eigen > 0 ? hand_eigen : hand;
+        std::printf("  %-52s %11.2f %9.3f %9.3f\n", c.name.c_str(), c.median(), c.median() / reference,
+                    c.median() / odeint_ns);
+    }
     std::printf("\n");
 }
 
@@ -302,6 +354,25 @@ void run_problem(const char* problem, const Kernel& kernel, const std::vector<do
             else
                 cs.push_back({"hand drift-first, 10 kicks", reset_arrays, [&](long k) {
                                   hand_drift_first<N, 10>(q.data(), p.data(), n, dt, k, d10, k10, kernel);
+                                  return q[0];
+                              }});
+        }
+        // The hand loops of an Eigen user (2-D problems).
+        const auto eigen_force = [&kernel](const auto& qq, auto& ff) { kernel.eigen_force(qq, ff); };
+        if constexpr (N > 0) {
+            if (leapfrog)
+                cs.push_back({"hand leapfrog, Eigen-expression force", reset_arrays, [&](long k) {
+                                  hand_leapfrog_eigen<N>(q.data(), p.data(), dt, k, eigen_force);
+                                  return q[0];
+                              }});
+            else if (subs.size() / 2 == 5)
+                cs.push_back({"hand drift-first, 5 kicks, Eigen-expression force", reset_arrays, [&](long k) {
+                                  hand_drift_first_eigen<N, 5>(q.data(), p.data(), dt, k, d5, k5, eigen_force);
+                                  return q[0];
+                              }});
+            else
+                cs.push_back({"hand drift-first, 10 kicks, Eigen-expression force", reset_arrays, [&](long k) {
+                                  hand_drift_first_eigen<N, 10>(q.data(), p.data(), dt, k, d10, k10, eigen_force);
                                   return q[0];
                               }});
         }
