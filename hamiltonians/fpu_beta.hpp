@@ -38,6 +38,23 @@ struct fpu_beta {
         const S r = -q[n - 1];  // spring to the right wall
         f[n - 1] = (r + S(beta) * r * r * r) - left;
     }
+    // df = J_F(q) u for force-gradient tables, one pass as the force:
+    // df_i = phi''(r_i) (u_{i+1} - u_i) - phi''(r_{i-1}) (u_i - u_{i-1}), phi''(r) = 1 + 3 beta r^2.
+    template <class V> void force_derivative(const V& q, const V& u, V& df) const {
+        using S = typename V::Scalar;
+        const Eigen::Index n = q.size();
+        df.resize(n);
+        if (n == 0) return;
+        S left = (1 + 3 * S(beta) * q[0] * q[0]) * u[0];
+        for (Eigen::Index i = 0; i + 1 < n; ++i) {
+            const S r = q[i + 1] - q[i];
+            const S right = (1 + 3 * S(beta) * r * r) * (u[i + 1] - u[i]);
+            df[i] = right - left;
+            left = right;
+        }
+        const S r = -q[n - 1];
+        df[n - 1] = (1 + 3 * S(beta) * r * r) * (-u[n - 1]) - left;
+    }
 };
 
 }  // namespace sympl::hamiltonians

@@ -59,6 +59,30 @@ TEST_CASE("catalog: measured order with non-quadratic kinetic energy") {
     }
 }
 
+TEST_CASE("catalog: force-gradient methods, order measured; they need quadratic T") {
+    for (const table& t : force_gradient_catalog()) {
+        CAPTURE(t.name());
+        CHECK(t.has_force_gradient());
+        CHECK(t.needs_quadratic_kinetic());
+        CHECK(t.family() == "force-gradient");
+        CHECK(t.citation().size() > 10);
+        check_order(t, order_problem::pendulum, t.order());
+        check_order(t, order_problem::kepler, t.order());
+        // With T = sqrt(1 + p^2), [V,[T,V]] depends on p and is no kick: the order must drop.
+        const double o = measure_order(t, order_problem::nonquadratic_kinetic).order;
+        CAPTURE(o);
+        CHECK(o < t.order() - 0.5);
+    }
+    // The sign of the gradient term matters: Chin's 4A with its gradient negated is a second-order method.
+    const table& chin = force_gradient_method("chin_4a");
+    std::vector<coefficient> flipped = chin.gradient();
+    for (coefficient& g : flipped) g = -g;
+    const table wrong("chin_4a_flipped", chin.kick(), chin.drift(), flipped, 4, "test");
+    CHECK(std::fabs(measure_order(wrong, order_problem::kepler).order - 2) <= 0.15);
+    CHECK_THROWS_WITH_AS(force_gradient_method("chin_4b"), doctest::Contains("chin_4a, chin_4a_triple_jump"),
+                         invalid_argument);
+}
+
 TEST_CASE("catalog: symmetric methods retrace their steps, step(dt) then step(-dt)") {
     for (const table& t : catalog()) {
         if (!t.is_symmetric()) continue;

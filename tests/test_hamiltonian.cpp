@@ -149,3 +149,39 @@ TEST_CASE("hamiltonians: initial data of the cited problems") {
     CHECK(energy(sun, y) < 0);
     CHECK(y.p.segment<3>(3).norm() == doctest::Approx(0.000954786104043 * Eigen::Vector3d(0.00565429, -0.00412490, -0.00190589).norm()));
 }
+
+namespace {
+// FPU-beta without its gradients: everything from the potential by dual numbers.
+struct fpu_potential_only {
+    double beta = 1.0;
+    template <class V> auto kinetic(const V& p) const { return p.squaredNorm() / 2; }
+    template <class V> auto potential(const V& q) const { return hamiltonians::fpu_beta{beta}.potential(q); }
+};
+}  // namespace
+
+TEST_CASE("force_derivative: the analytic FPU-beta one and the potential's Hessian by dual numbers agree") {
+    // J_F u three ways: fpu_beta's analytic force_derivative, forward over
+    // forward mode on its potential alone, and central differences of the force.
+    const hamiltonians::fpu_beta analytic{1.0};
+    const fpu_potential_only by_duals{1.0};
+    const int n = 21;  // more than two chunks of 8 directions
+    Eigen::VectorXd q(n), u(n), a, d, f1, f2;
+    for (int i = 0; i < n; ++i) q[i] = 0.4 * std::sin(0.9 * i + 0.3), u[i] = std::cos(1.7 * i);
+    force_derivative(analytic, q, u, a);
+    force_derivative(by_duals, q, u, d);
+    const double e = 1e-5;
+    const Eigen::VectorXd qa = q + e * u, qb = q - e * u;
+    force(analytic, qa, f1);
+    force(analytic, qb, f2);
+    const Eigen::VectorXd differences = (f1 - f2) / (2 * e);
+    CHECK((a - d).cwiseAbs().maxCoeff() <= 1e-13 * a.cwiseAbs().maxCoeff());
+    // Central differences: truncation ~ e^2 |F'''| ~ 1e-10, rounding ~ 1e-16 / e ~ 1e-11.
+    CHECK((a - differences).cwiseAbs().maxCoeff() <= 1e-8);
+    // Fixed-size state, Kepler (analytic force, the potential differentiated twice).
+    const hamiltonians::kepler k;
+    Eigen::Vector2d q2(0.7, -0.3), u2(0.2, 0.5), df2;
+    force_derivative(k, q2, u2, df2);
+    const double r2 = q2.squaredNorm(), r3 = r2 * std::sqrt(r2);
+    const Eigen::Vector2d exact = (3 * q2.dot(u2) / (r2 * r3)) * q2 - u2 / r3;
+    CHECK((df2 - exact).cwiseAbs().maxCoeff() <= 1e-14);
+}

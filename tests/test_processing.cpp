@@ -173,6 +173,9 @@ TEST_CASE("processing: a processor whose weights do not sum to 0, or are not fin
     CHECK_THROWS_WITH_AS(make_processed("p", kernel, lf, {NAN, 0.1}, 4, "c"),
                          doctest::Contains("processor weight[0] = nan"), invalid_table);
     CHECK_THROWS_AS(make_processed("p", kernel, lf, {}, 4, "c"), invalid_table);
+    // The processor walks plain kicks and drifts: a force-gradient base is refused.
+    CHECK_THROWS_WITH_AS(make_processed("p", kernel, force_gradient_method("chin_4a"), {0.1, -0.1}, 4, "c"),
+                         doctest::Contains("'chin_4a' has force-gradient kicks"), invalid_table);
     CHECK_THROWS_WITH_AS(processed("no_such"), doctest::Contains("bcm_2006_p8"), invalid_argument);
     processed_stepper<HH, X2> s({}, processed("bcm_2006_p8"));
     X2 x = HH::initial_state(0.1);

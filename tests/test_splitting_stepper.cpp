@@ -237,3 +237,78 @@ TEST_CASE("splitting_stepper: a kick and its drift fused in one pass (velocity(p
         CHECK(max_difference(a, b) == 0);
     }
 }
+
+namespace {
+// Written for doubles only: nothing to differentiate a force-gradient kick with.
+struct double_only_oscillator {
+    double kinetic(const Eigen::Vector2d& p) const { return p.squaredNorm() / 2; }
+    double potential(const Eigen::Vector2d& q) const { return q.squaredNorm() / 2; }
+    void force(const Eigen::Vector2d& q, Eigen::Vector2d& f) const { f = -q; }
+};
+}  // namespace
+
+TEST_CASE("splitting_stepper: force-gradient tables, counted, chunked bit for bit, refused without a derivative") {
+    using State = phase_space<double>;
+    const table& chin = force_gradient_method("chin_4a");
+    const int n = 64;
+    State a(n);
+    for (int i = 0; i < n; ++i) a.q[i] = 0.3 * std::sin(0.7 * i + 0.2), a.p[i] = 0.1 * std::cos(1.3 * i);
+    State b = a;
+    auto whole = make_stepper<State>(hamiltonians::fpu_beta{1.0}, chin);
+    whole.steps(a, 0.05, 300);
+    // A force per kick with the last one reused across steps; one derivative per step.
+    CHECK(whole.force_evaluations() == 2 * 300 + 1);
+    CHECK(whole.force_derivative_evaluations() == 300);
+    auto chunked = make_stepper<State>(hamiltonians::fpu_beta{1.0}, chin);
+    chunked.steps(b, 0.05, 100);
+    chunked.resume_steps(b, 0.05, 200);
+    CHECK(max_difference(a, b) == 0);
+    CHECK(chunked.force_evaluations() == whole.force_evaluations());
+    // Fourth order in the energy on the chain: dt halved, the error / 16.
+    const auto energy_error = [&](double dt) {
+        State x(n);
+        for (int i = 0; i < n; ++i) x.q[i] = 0.3 * std::sin(0.7 * i + 0.2), x.p[i] = 0.1 * std::cos(1.3 * i);
+        auto s = make_stepper<State>(hamiltonians::fpu_beta{1.0}, chin);
+        const double e0 = energy(s.hamiltonian(), x);
+        double worst = 0;
+        for (int k = 0; k < 20; ++k) {
+            s.steps(x, dt, std::size_t(std::lround(0.5 / dt)));
+            worst = std::max(worst, std::fabs(energy(s.hamiltonian(), x) - e0));
+        }
+        return worst;
+    };
+    const double slope = std::log2(energy_error(0.1) / energy_error(0.05));
+    CAPTURE(slope);
+    CHECK(std::fabs(slope - 4) <= 0.3);
+    // Compensated summation runs the same method: a rounding apart.
+    State c(n);
+    for (int i = 0; i < n; ++i) c.q[i] = 0.3 * std::sin(0.7 * i + 0.2), c.p[i] = 0.1 * std::cos(1.3 * i);
+    auto compensated = make_stepper<State>(hamiltonians::fpu_beta{1.0}, chin, stepper_options{.compensated = true});
+    compensated.steps(c, 0.05, 300);
+    CHECK(max_difference(a, c) < 1e-12);
+    // No derivative to be had: refused at construction, naming the table.
+    using S2 = phase_space<double, 2>;
+    CHECK_THROWS_WITH_AS((splitting_stepper<double_only_oscillator, S2>({}, chin)),
+                         doctest::Contains("table 'chin_4a' has force-gradient kicks"), invalid_argument);
+    CHECK_NOTHROW((splitting_stepper<double_only_oscillator, S2>({}, method("leapfrog_kdk"))));
+}
+
+TEST_CASE("splitting_stepper: a force-gradient table's stability interval is where the stepper's oscillator turns unstable") {
+    // The table computes the interval from its coefficients; the stepper runs the
+    // same kicks with J_F u from dual numbers. The one-step matrix of the
+    // oscillator (omega = 1) from the stepper, just inside and just outside.
+    const table& chin = force_gradient_method("chin_4a");
+    const double h = chin.stability_interval();
+    CHECK(h > 2.0);  // beyond the leapfrog's
+    using State = phase_space<double, 1>;
+    const auto trace = [&](double dt) {
+        auto s = make_stepper<State>(hamiltonians::harmonic_oscillator{}, chin);
+        State e1(Eigen::Matrix<double, 1, 1>(1.0), Eigen::Matrix<double, 1, 1>(0.0));
+        State e2(Eigen::Matrix<double, 1, 1>(0.0), Eigen::Matrix<double, 1, 1>(1.0));
+        s.step(e1, dt);
+        s.step(e2, dt);
+        return e1.q[0] + e2.p[0];
+    };
+    CHECK(std::fabs(trace(0.999 * h)) < 2);
+    CHECK(std::fabs(trace(1.001 * h)) > 2);
+}

@@ -227,3 +227,29 @@ TEST_CASE("table algebra: random invalid tables are refused (500 of each kind)")
         CHECK_THROWS_AS(table("bad", longer, drift), invalid_table);
     }
 }
+
+TEST_CASE("table: force-gradient coefficients merge, scale by w^3 in compositions, and are validated") {
+    const table& chin = force_gradient_method("chin_4a");
+    CHECK(chin.gradient().size() == chin.stages());
+    CHECK(chin.force_evaluations() == 2);  // the 1/6 kicks joined across steps
+    CHECK(chin.force_gradient_evaluations() == 1);
+    CHECK(chin.is_symmetric());
+    CHECK(adjoint(chin) == chin);
+    // Two half steps: each half's gradient scales by (1/2)^3, and the joined
+    // kicks add their weights and gradients.
+    const table two = compose(chin, {0.5L, 0.5L}, "two_halves", 4);
+    coefficient total_gradient = 0;
+    for (const substep& o : two.substeps()) total_gradient += o.gradient;
+    CHECK(std::fabs(static_cast<double>(total_gradient - 2 * (1.0L / 72) / 8)) <= 1e-18);
+    CHECK(two.has_force_gradient());
+    CHECK(two.needs_quadratic_kinetic());
+    // A kick whose weight is 0 but whose gradient is not stays a sub-step.
+    const table pure("pure_gradient", {0.5L, 0, 0.5L}, {0.5L, 0.5L, 0}, {0, 0.01L, 0}, 2, "test");
+    CHECK(pure.stages() == 3);
+    CHECK(pure.force_evaluations() == 2);
+    // Bad gradients name the value.
+    CHECK(message_of([] { table("bad", {0.5L, 0.5L}, {1, 0}, {0, NAN}, 2, "test"); }).find("gradient[1] = nan") !=
+          std::string::npos);
+    CHECK(message_of([] { table("bad", {0.5L, 0.5L}, {1, 0}, {0}, 2, "test"); })
+              .find("gradient has 1 coefficients and kick has 2") != std::string::npos);
+}

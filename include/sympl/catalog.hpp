@@ -402,6 +402,20 @@ inline std::vector<processed_method> processed_methods() {
     };
 }
 
+// Force-gradient methods (table.hpp): a kick of weight w and gradient g is the
+// flow of w dt V + g dt^3 [V,[T,V]], [V,[T,V]] = F.M^-1.F; they need quadratic T.
+inline std::vector<table> force_gradient_methods() {
+    // Chin 1997, algorithm 4A: V/6, T/2, (2/3) V~, T/2, V/6 with V~ = V + (dt^2/48) [V,[T,V]],
+    // so the middle kick's gradient coefficient is (2/3)(1/48) = 1/72.
+    const table chin_4a("chin_4a", {1.0L / 6, 2.0L / 3, 1.0L / 6}, {0.5L, 0.5L, 0}, {0, 1.0L / 72, 0}, 4,
+                        "Chin 1997, Phys. Lett. A 226, 344 (algorithm 4A)");
+    // Its triple jump (Yoshida 1990), the order-6 construction of Chin & Kidwell 2000.
+    const table jump = triple_jump(chin_4a);
+    return {chin_4a, table::from_substeps("chin_4a_triple_jump", jump.substeps(), 6,
+                                          "Chin & Kidwell 2000, Phys. Rev. E 62, 8746 (4A, triple jump)",
+                                          kinetic_requirement::quadratic)};
+}
+
 }  // namespace detail
 
 // All catalog entries, built once, in order of increasing order.
@@ -442,6 +456,27 @@ inline const table& method(const std::string& name) {
     std::string valid;
     for (const std::string& n : catalog_names()) valid += (valid.empty() ? "" : ", ") + n;
     throw invalid_argument("unknown method '" + name + "'; expected one of: " + valid);
+}
+
+// The force-gradient methods, built once. Kept apart from catalog(): the
+// program's scenes and table files carry kick and drift coefficients only.
+inline const std::vector<table>& force_gradient_catalog() {
+    static const std::vector<table> entries = [] {
+        std::vector<table> all;
+        for (const table& t : detail::force_gradient_methods()) all.push_back(t.with_family("force-gradient"));
+        return all;
+    }();
+    return entries;
+}
+
+// The force-gradient method called `name`; an unknown name lists the valid ones.
+inline const table& force_gradient_method(const std::string& name) {
+    std::string valid;
+    for (const table& t : force_gradient_catalog()) {
+        if (t.name() == name) return t;
+        valid += (valid.empty() ? "" : ", ") + t.name();
+    }
+    throw invalid_argument("unknown force-gradient method '" + name + "'; expected one of: " + valid);
 }
 
 // The processed methods (processing.hpp), built once.

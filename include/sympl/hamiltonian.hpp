@@ -150,6 +150,53 @@ template <class H, class Vec>
     }
 }
 
+// The force's derivative along u, df = J_F(q) u with J_F = dF/dq = -Hessian of
+// V: what a force-gradient kick needs (table.hpp), with u = M^-1 F. A user type
+// may provide it analytically as
+//     force_derivative(q, u, df)   writing J_F(q) u into df;
+// otherwise it is the Hessian-vector product of the potential by forward mode
+// over forward mode (dual numbers whose values are dual numbers carrying u):
+// about n/8 evaluations of V for n > 16, so large systems should give it.
+template <class H, class Vec>
+concept has_force_derivative = requires(const H& h, const Vec& q, const Vec& u, Vec& df) {
+    h.force_derivative(q, u, df);
+};
+
+namespace detail {
+template <class Vec>
+using along_vector = rebind_vector<Vec, dual<scalar_of<Vec>, 1>>;  // value q, one tangent u
+template <class Vec>
+using hessian_vector = rebind_vector<along_vector<Vec>, dual<dual<scalar_of<Vec>, 1>, autodiff_width<Vec>()>>;
+}  // namespace detail
+
+// The potential must return the nested dual number itself: a potential written
+// for doubles only would take the dual vector by a conversion that drops it.
+template <class H, class Vec>
+concept differentiable_force = has_force_derivative<H, Vec> || requires(const H& h, const detail::hessian_vector<Vec>& x) {
+    { h.potential(x) } -> std::same_as<scalar_of<detail::hessian_vector<Vec>>>;
+};
+
+template <class H, class Vec>
+    requires separable_hamiltonian<H, Vec> && differentiable_force<H, Vec>
+void force_derivative(const H& h, const Vec& q, const Vec& u, Vec& df) {
+    if constexpr (has_force_derivative<H, Vec>) {
+        h.force_derivative(q, u, df);
+    } else {
+        using A = detail::along_vector<Vec>;
+        thread_local A x, g;
+        const Eigen::Index n = q.size();
+        if (x.size() != n) x.resize(n);
+        for (Eigen::Index i = 0; i < n; ++i) {
+            x[i].value = q[i];
+            x[i].grad[0] = u[i];
+        }
+        // g = grad V at q + e u, to first order in e: its tangent is Hessian(V) u = -J_F u.
+        detail::gradient([&h](const auto& y) { return h.potential(y); }, x, g);
+        if (df.size() != n) df.resize(n);
+        for (Eigen::Index i = 0; i < n; ++i) df[i] = -g[i].grad[0];
+    }
+}
+
 // Total energy H(q, p) = T(p) + V(q) (Gould & Tobochnik eq. 3.71).
 template <class H, class S, int D>
     requires separable_hamiltonian<H, typename phase_space<S, D>::vector>

@@ -59,6 +59,9 @@ inline processed_method make_processed(std::string name, table kernel, const tab
     if (std::fabs(sum) > 1e-14L * std::max<coefficient>(1, largest))
         throw invalid_table("processed method '" + name + "': processor weights sum to " + detail::format_coefficient(sum) +
                             "; expected 0 (a processor is a change of variables, not a step in time)");
+    if (base.has_force_gradient())
+        throw invalid_table("processed method '" + name + "': processor base '" + base.name() +
+                            "' has force-gradient kicks; expected a plain kick-drift table");
     std::vector<substep> ops;
     for (coefficient w : weights) detail::append_scaled(ops, base, w);
     return {std::move(name), std::move(kernel), detail::canonical(std::move(ops)), order, std::move(citation)};

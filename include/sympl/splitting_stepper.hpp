@@ -63,6 +63,14 @@ public:
         tail_.resize(ops.size() - 1);
         rotated_.resize(body_.size());
         if constexpr (State::dimension != Eigen::Dynamic) size_workspace(State::dimension);
+        if (table_.has_force_gradient()) {
+            if constexpr (!differentiable_force<H, vector>)
+                throw invalid_argument("splitting_stepper: table '" + table_.name() +
+                                       "' has force-gradient kicks, which need the force's derivative J_F u; "
+                                       "expected a Hamiltonian with force_derivative(q, u, df) or a potential "
+                                       "templated on its scalar (differentiated twice by dual numbers)");
+            gradient_ops_ = ops;
+        }
     }
 
     // One step of size dt (dt < 0 runs backwards). Safe whatever happened to x
@@ -118,7 +126,9 @@ public:
 
     std::uint64_t force_evaluations() const { return force_evaluations_; }
     std::uint64_t velocity_evaluations() const { return velocity_evaluations_; }
-    void reset_counters() { force_evaluations_ = velocity_evaluations_ = 0; }
+    // Evaluations of J_F u by force-gradient kicks (0 for other tables).
+    std::uint64_t force_derivative_evaluations() const { return force_derivative_evaluations_; }
+    void reset_counters() { force_evaluations_ = velocity_evaluations_ = force_derivative_evaluations_ = 0; }
 
     const H& hamiltonian() const { return h_; }
     const table& method() const { return table_; }
@@ -190,6 +200,7 @@ private:
             if (!resume) force_fresh_ = velocity_fresh_ = false;
             return;
         }
+        if (!gradient_ops_.empty()) return run_with_gradient(x, dt, n, resume);
         const std::size_t L = weights_.size();
         for (std::size_t k = 1; k < L; ++k) body_[k - 1] = tail_[k - 1] = weights_[k] * dt;
         const scalar first = weights_[0] * dt;
@@ -287,6 +298,53 @@ private:
                 force(h_, x.q, f);
                 kick<Compensated>(x, f, h[j + 1]);
             }
+        }
+    }
+
+    // A force-gradient table, walked sub-step by sub-step (the force reused
+    // while q has not moved). Each gradient kick costs a force and a force
+    // derivative, so the walk's bookkeeping does not matter:
+    //     p += h F + 2 g dt^3 J_F M^-1 F     (table.hpp; M^-1 F = velocity(F) for quadratic T).
+    void run_with_gradient(State& x, scalar dt, std::size_t n, bool resume) {
+        if constexpr (differentiable_force<H, vector>) {
+            const Eigen::Index dim = x.q.size();
+            if (along_.size() != dim) along_.resize(dim), force_change_.resize(dim);
+            bool fresh = resume && force_fresh_;
+            const scalar dt3 = dt * dt * dt;
+            std::uint64_t forces = 0, velocities = 0, derivatives = 0;
+            const auto add = [this](vector& y, vector& error, const auto& increment) {
+                if (options_.compensated) {
+                    increment_ = increment;
+                    add_compensated(y, error);
+                } else {
+                    y += increment;
+                }
+            };
+            for (std::size_t step = 0; step < n; ++step)
+                for (const substep& o : gradient_ops_) {
+                    const scalar h = static_cast<scalar>(o.weight) * dt;
+                    if (o.kind == substep::drift) {
+                        velocity(h_, x.p, velocity_);
+                        ++velocities;
+                        add(x.q, q_error_, h * velocity_);
+                        fresh = false;
+                        continue;
+                    }
+                    if (!fresh) force(h_, x.q, force_), ++forces, fresh = true;
+                    if (o.gradient == 0) {
+                        add(x.p, p_error_, h * force_);
+                    } else {
+                        velocity(h_, force_, along_);
+                        force_derivative(h_, x.q, along_, force_change_);
+                        ++derivatives;
+                        add(x.p, p_error_, h * force_ + (2 * static_cast<scalar>(o.gradient) * dt3) * force_change_);
+                    }
+                }
+            force_fresh_ = fresh;
+            velocity_fresh_ = false;
+            force_evaluations_ += forces;
+            velocity_evaluations_ += velocities;
+            force_derivative_evaluations_ += derivatives;
         }
     }
 
@@ -396,7 +454,9 @@ private:
     vector force_, velocity_;
     vector q_error_, p_error_, increment_, sum_;  // compensated summation only
     bool force_fresh_ = false, velocity_fresh_ = false;
-    std::uint64_t force_evaluations_ = 0, velocity_evaluations_ = 0;
+    std::uint64_t force_evaluations_ = 0, velocity_evaluations_ = 0, force_derivative_evaluations_ = 0;
+    std::vector<substep> gradient_ops_;  // a force-gradient table's sub-steps (empty for other tables)
+    vector along_, force_change_;        // M^-1 F and J_F M^-1 F (force-gradient tables only)
 };
 
 // Deduction helper: make_stepper<State>(h, method("leapfrog_kdk")).

@@ -16,6 +16,15 @@
 //
 // Every table is kept in canonical form: adjacent sub-steps of the same kind
 // are merged and zero sub-steps removed, so no force is evaluated in vain.
+//
+// A force-gradient method (Chin 1997; Omelyan, Mryglod & Folk 2002) also has a
+// gradient coefficient g_k per kick: its kick is exp(kick[k] dt V + g_k dt^3
+// [V,[T,V]]) in the operator notation of those papers. For T = p.M^-1.p / 2
+// the double commutator is again a kick, by the gradient of F.M^-1.F, so
+//     p += kick[k] dt F(q) + 2 g_k dt^3 J_F(q) M^-1 F(q)     (J_F = dF/dq)
+// (the sign settled by measurement: with the other one Chin's 4A, g = 1/72,
+// has order 2 instead of 4; tests/test_catalog.cpp). The steppers take J_F u
+// from force_derivative() (hamiltonian.hpp). Such a table needs quadratic T.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -37,10 +46,12 @@ enum class kinetic_requirement {
     quadratic,  // Runge-Kutta-Nystrom only: T(p) = p.M^-1.p / 2; lower order otherwise
 };
 
-// One sub-step of a method: a kick (p) or a drift (q) by weight * dt.
+// One sub-step of a method: a kick (p) or a drift (q) by weight * dt; a kick
+// may carry a force-gradient term gradient * dt^3 [V,[T,V]] (see above).
 struct substep {
     enum kind_t { kick, drift } kind;
     coefficient weight;
+    coefficient gradient = 0;  // kicks only
 };
 
 namespace detail {
@@ -56,11 +67,13 @@ inline std::string format_coefficient(coefficient c) {
 inline std::vector<substep> canonical(std::vector<substep> ops) {
     std::vector<substep> out;
     out.reserve(ops.size());
+    const auto zero = [](const substep& s) { return s.weight == 0 && s.gradient == 0; };
     for (const substep& s : ops) {
-        if (s.weight == 0) continue;
+        if (zero(s)) continue;
         if (!out.empty() && out.back().kind == s.kind) {
             out.back().weight += s.weight;
-            if (out.back().weight == 0) out.pop_back();
+            out.back().gradient += s.gradient;  // both are functions of q alone: kicks commute
+            if (zero(out.back())) out.pop_back();
         } else {
             out.push_back(s);
         }
@@ -77,21 +90,39 @@ public:
     table(std::string name, std::vector<coefficient> kick, std::vector<coefficient> drift, int order = 0,
           std::string citation = {}, kinetic_requirement requirement = kinetic_requirement::any)
         : name_(std::move(name)), order_(order), citation_(std::move(citation)), requirement_(requirement) {
-        validate(kick, drift);
-        set_substeps(to_substeps(kick, drift));
+        validate(kick, drift, {});
+        set_substeps(to_substeps(kick, drift, {}));
+    }
+
+    // A force-gradient table: `gradient` holds one coefficient per stage, for
+    // the stage's kick (0 where the kick is a plain one). Needs quadratic T.
+    table(std::string name, std::vector<coefficient> kick, std::vector<coefficient> drift,
+          std::vector<coefficient> gradient, int order, std::string citation)
+        : name_(std::move(name)), order_(order), citation_(std::move(citation)),
+          requirement_(kinetic_requirement::quadratic) {
+        validate(kick, drift, gradient);
+        set_substeps(to_substeps(kick, drift, gradient));
     }
 
     // A table from a sequence of sub-steps (composition builds these).
     static table from_substeps(std::string name, const std::vector<substep>& ops, int order, std::string citation,
                                kinetic_requirement requirement) {
-        std::vector<coefficient> kick, drift;
-        split(detail::canonical(ops), kick, drift);
+        std::vector<coefficient> kick, drift, gradient;
+        split(detail::canonical(ops), kick, drift, gradient);
+        if (std::any_of(gradient.begin(), gradient.end(), [](coefficient g) { return g != 0; }))
+            return table(std::move(name), std::move(kick), std::move(drift), std::move(gradient), order,
+                         std::move(citation));
         return table(std::move(name), std::move(kick), std::move(drift), order, std::move(citation), requirement);
     }
 
     const std::string& name() const { return name_; }
     const std::vector<coefficient>& kick() const { return kick_; }
     const std::vector<coefficient>& drift() const { return drift_; }
+    // Force-gradient coefficients, one per stage (all 0 for a plain table).
+    const std::vector<coefficient>& gradient() const { return gradient_; }
+    bool has_force_gradient() const {
+        return std::any_of(gradient_.begin(), gradient_.end(), [](coefficient g) { return g != 0; });
+    }
     // Claimed order (0 when unknown, e.g. a user's table); measure_order() checks it.
     int order() const { return order_; }
     const std::string& citation() const { return citation_; }
@@ -109,16 +140,20 @@ public:
     std::size_t stages() const { return kick_.size(); }
 
     // Alternating kick/drift sub-steps of one step, zero ones left out.
-    std::vector<substep> substeps() const { return to_substeps(kick_, drift_); }
+    std::vector<substep> substeps() const { return to_substeps(kick_, drift_, gradient_); }
 
     // Force evaluations per step in a long run: one per non-zero kick, less
     // one when the step ends on a kick and starts with one (the last force is
     // reused by the next step, so leapfrog KDK costs one).
     std::size_t force_evaluations() const {
         std::size_t n = 0;
-        for (coefficient k : kick_) n += (k != 0);
-        if (kick_.front() != 0 && drift_.back() == 0 && n > 1) --n;
+        for (std::size_t k = 0; k < kick_.size(); ++k) n += (kick_[k] != 0 || gradient_[k] != 0);
+        if ((kick_.front() != 0 || gradient_.front() != 0) && drift_.back() == 0 && n > 1) --n;
         return n;
+    }
+    // Evaluations of the force's derivative J_F u per step: one per gradient term.
+    std::size_t force_gradient_evaluations() const {
+        return std::size_t(std::count_if(gradient_.begin(), gradient_.end(), [](coefficient g) { return g != 0; }));
     }
     // Velocity evaluations per step, counted the same way.
     std::size_t velocity_evaluations() const {
@@ -132,7 +167,9 @@ public:
     bool is_symmetric(coefficient tolerance = 1e-14L) const {
         const auto ops = substeps();
         for (std::size_t i = 0, j = ops.size() - 1; i < ops.size(); ++i, --j)
-            if (ops[i].kind != ops[j].kind || std::fabs(ops[i].weight - ops[j].weight) > tolerance) return false;
+            if (ops[i].kind != ops[j].kind || std::fabs(ops[i].weight - ops[j].weight) > tolerance ||
+                std::fabs(ops[i].gradient - ops[j].gradient) > tolerance)
+                return false;
         return true;
     }
 
@@ -141,10 +178,15 @@ public:
     // is stable, |trace| < 2, for all omega*dt in (0, h). 0 if none.
     double stability_interval() const {
         auto trace = [this](long double h) {
-            // Propagator of (q, p) for one step; kick: p -= c h q, drift: q += c h p (omega = 1).
+            // Propagator of (q, p) for one step; kick: p -= (c h - 2 g h^3) q (F = -q, J_F = -1),
+            // drift: q += c h p (omega = 1).
             long double a = 1, b = 0, c = 0, d = 1;  // [[a b][c d]] maps (q,p) -> (q,p)
             for (const substep& s : substeps()) {
-                if (s.kind == substep::kick) { c -= s.weight * h * a; d -= s.weight * h * b; }
+                if (s.kind == substep::kick) {
+                    const long double k = s.weight * h - 2 * s.gradient * h * h * h;
+                    c -= k * a;
+                    d -= k * b;
+                }
                 else { a += s.weight * h * c; b += s.weight * h * d; }
             }
             return a + d;
@@ -163,37 +205,42 @@ public:
         return static_cast<double>(lo);
     }
 
-    bool operator==(const table& o) const { return kick_ == o.kick_ && drift_ == o.drift_; }
+    bool operator==(const table& o) const { return kick_ == o.kick_ && drift_ == o.drift_ && gradient_ == o.gradient_; }
 
 private:
-    static std::vector<substep> to_substeps(const std::vector<coefficient>& kick, const std::vector<coefficient>& drift) {
+    static std::vector<substep> to_substeps(const std::vector<coefficient>& kick, const std::vector<coefficient>& drift,
+                                            const std::vector<coefficient>& gradient) {
         std::vector<substep> ops;
         ops.reserve(2 * kick.size());
         for (std::size_t k = 0; k < kick.size(); ++k) {
-            ops.push_back({substep::kick, kick[k]});
+            ops.push_back({substep::kick, kick[k], gradient.empty() ? 0 : gradient[k]});
             ops.push_back({substep::drift, drift[k]});
         }
         return detail::canonical(std::move(ops));
     }
 
     // Canonical sub-steps -> kick-first stages (kick[0] = 0 if drift comes first).
-    static void split(const std::vector<substep>& ops, std::vector<coefficient>& kick, std::vector<coefficient>& drift) {
+    static void split(const std::vector<substep>& ops, std::vector<coefficient>& kick, std::vector<coefficient>& drift,
+                      std::vector<coefficient>& gradient) {
         kick.clear();
         drift.clear();
+        gradient.clear();
         for (const substep& s : ops) {
             if (s.kind == substep::kick) {
                 kick.push_back(s.weight);
                 drift.push_back(0);
+                gradient.push_back(s.gradient);
             } else {
-                if (kick.empty()) { kick.push_back(0); drift.push_back(0); }
+                if (kick.empty()) { kick.push_back(0); drift.push_back(0); gradient.push_back(0); }
                 drift.back() = s.weight;
             }
         }
     }
 
-    void set_substeps(const std::vector<substep>& ops) { split(ops, kick_, drift_); }
+    void set_substeps(const std::vector<substep>& ops) { split(ops, kick_, drift_, gradient_); }
 
-    void validate(const std::vector<coefficient>& kick, const std::vector<coefficient>& drift) const {
+    void validate(const std::vector<coefficient>& kick, const std::vector<coefficient>& drift,
+                  const std::vector<coefficient>& gradient) const {
         const std::string who = "table '" + name_ + "': ";
         if (kick.empty() || kick.size() != drift.size())
             throw invalid_table(who + "kick has " + std::to_string(kick.size()) + " coefficients and drift has " +
@@ -210,12 +257,19 @@ private:
         };
         check(kick, "kick");
         check(drift, "drift");
+        if (!gradient.empty() && gradient.size() != kick.size())
+            throw invalid_table(who + "gradient has " + std::to_string(gradient.size()) + " coefficients and kick has " +
+                                std::to_string(kick.size()) + "; expected one gradient coefficient per stage");
+        for (std::size_t i = 0; i < gradient.size(); ++i)
+            if (!std::isfinite(gradient[i]))
+                throw invalid_table(who + "gradient[" + std::to_string(i) + "] = " +
+                                    detail::format_coefficient(gradient[i]) + "; expected a finite coefficient");
         if (order_ < 0)
             throw invalid_table(who + "order = " + std::to_string(order_) + "; expected >= 0 (0 = unknown)");
     }
 
     std::string name_;
-    std::vector<coefficient> kick_, drift_;
+    std::vector<coefficient> kick_, drift_, gradient_;
     int order_;
     std::string citation_;
     kinetic_requirement requirement_;
@@ -273,6 +327,7 @@ inline kinetic_requirement stricter(kinetic_requirement a, kinetic_requirement b
 inline void append_scaled(std::vector<substep>& ops, const table& t, coefficient w) {
     for (substep s : t.substeps()) {
         s.weight *= w;
+        s.gradient *= w * w * w;  // the term is dt^3 [V,[T,V]]: a step of w dt scales it by w^3
         ops.push_back(s);
     }
 }

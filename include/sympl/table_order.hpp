@@ -98,6 +98,10 @@ struct cosine_potential : Kinetic {
         using std::sin;
         f[0] = -sin(q[0]);
     }
+    template <class V> void force_derivative(const V& q, const V& u, V& df) const {  // for force-gradient tables
+        using std::cos;
+        df[0] = -cos(q[0]) * u[0];
+    }
 };
 struct kepler : quadratic_kinetic {
     template <class V> auto potential(const V& q) const {
@@ -108,6 +112,13 @@ struct kepler : quadratic_kinetic {
         using std::sqrt;
         const auto r2 = q.squaredNorm();
         f = q * (-1 / (r2 * sqrt(r2)));
+    }
+    // J_F u = -u / r^3 + 3 (q.u) q / r^5.
+    template <class V> void force_derivative(const V& q, const V& u, V& df) const {
+        using std::sqrt;
+        const auto r2 = q.squaredNorm();
+        const auto r3 = r2 * sqrt(r2);
+        df = (3 * q.dot(u) / (r2 * r3)) * q - u / r3;
     }
 };
 }  // namespace order_problems
