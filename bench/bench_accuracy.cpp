@@ -7,8 +7,9 @@
 // step (or loosest tolerance) that meets it is found by a scan from loose to
 // tight and bisection on its logarithm; that run is then timed (median of
 // several). Contenders, side by side in one process on the same force code:
-// sympl's catalog tables and processed methods (processing.hpp; the processor
-// applied at each look), and Boost.Odeint's runge_kutta4,
+// sympl's catalog tables, force-gradient methods (J_F u analytic: fpu_beta's
+// and henon_heiles's force_derivative) and processed methods (processing.hpp;
+// the processor applied at each look), and Boost.Odeint's runge_kutta4,
 // cash_karp54, dopri5 (dense output), fehlberg78, bulirsch_stoer (controlled and
 // dense output), adams_bashforth_moulton<8> and its two symplectic RKN steppers.
 // Prints times and each one's ratio to the best Odeint method.
@@ -96,6 +97,8 @@ std::vector<contender> contenders(const problem<H, X, Y>& pr) {
         const sympl::table m = sympl::method(t);
         all.push_back({t, false, 2.0, 1e-4, sympl_run([&pr, m] { return sympl::make_stepper<X>(pr.h, m); })});
     }
+    for (const sympl::table& m : sympl::force_gradient_catalog())
+        all.push_back({m.name(), false, 2.0, 1e-4, sympl_run([&pr, m] { return sympl::make_stepper<X>(pr.h, m); })});
     for (const sympl::processed_method& m : sympl::processed_catalog())
         all.push_back({m.name, false, 2.0, 1e-4,
                        sympl_run([&pr, m] { return sympl::processed_stepper<H, X>(pr.h, m); })});

@@ -22,6 +22,11 @@ struct henon_heiles {
         f[0] = -q[0] - 2 * q[0] * q[1];
         f[1] = -q[1] - q[0] * q[0] + q[1] * q[1];
     }
+    // df = J_F(q) u for force-gradient tables: J_F = [[-1 - 2y, -2x], [-2x, -1 + 2y]].
+    template <class V> void force_derivative(const V& q, const V& u, V& df) const {
+        df[0] = -(1 + 2 * q[1]) * u[0] - 2 * q[0] * u[1];
+        df[1] = -2 * q[0] * u[0] + (2 * q[1] - 1) * u[1];
+    }
 
     // A state of the given energy on the section q1 = 0: (q2, p2) chosen, p1 >= 0 from H.
     template <class S = double>

@@ -184,4 +184,16 @@ TEST_CASE("force_derivative: the analytic FPU-beta one and the potential's Hessi
     const double r2 = q2.squaredNorm(), r3 = r2 * std::sqrt(r2);
     const Eigen::Vector2d exact = (3 * q2.dot(u2) / (r2 * r3)) * q2 - u2 / r3;
     CHECK((df2 - exact).cwiseAbs().maxCoeff() <= 1e-14);
+    // Henon-Heiles' analytic J_F u against the Hessian of its potential by dual numbers.
+    struct henon_heiles_potential_only {
+        double kinetic(const Eigen::Vector2d& p) const { return p.squaredNorm() / 2; }
+        auto potential(const detail::hessian_vector<Eigen::Vector2d>& q) const {
+            return hamiltonians::henon_heiles{}.potential(q);
+        }
+        double potential(const Eigen::Vector2d& q) const { return hamiltonians::henon_heiles{}.potential(q); }
+    };
+    Eigen::Vector2d hh_analytic, hh_duals;
+    force_derivative(hamiltonians::henon_heiles{}, q2, u2, hh_analytic);
+    force_derivative(henon_heiles_potential_only{}, q2, u2, hh_duals);
+    CHECK((hh_analytic - hh_duals).cwiseAbs().maxCoeff() <= 1e-15);
 }
