@@ -206,7 +206,6 @@ private:
         const scalar first = weights_[0] * dt;
         if constexpr (reference_velocity) velocity_is_p_ = &h_.velocity(x.p) == &x.p;
         body_.back() = joined_ ? weights_[L - 1] * dt + first : first;
-        for (std::size_t k = 0; k < body_.size(); ++k) rotated_[k] = body_[(k + 1) % body_.size()];
         if constexpr (State::dimension != Eigen::Dynamic) {
             State y = x;
             vector f = force_, v = velocity_;
@@ -269,6 +268,10 @@ private:
         constexpr bool kick_first_pairs = !small_fixed;
         // Chunks of steps whose pairs a size_t counts (each chunk is whole steps).
         const std::size_t most = std::numeric_limits<std::size_t>::max() / per_step;
+        if (KickFirst != kick_first_pairs && steps > 0) {
+            for (std::size_t k = 0; k + 1 < m; ++k) rotated_[k] = body_[k + 1];
+            rotated_[m - 1] = body_[0];
+        }
         while (steps > 0) {
             const std::size_t chunk = std::min(steps, most), pairs = chunk * per_step;
             steps -= chunk;
