@@ -59,7 +59,7 @@ TEST_CASE("catalog: measured order with non-quadratic kinetic energy") {
     }
 }
 
-TEST_CASE("catalog: force-gradient methods, order measured; they need quadratic T") {
+TEST_CASE("catalog: force-gradient methods, order measured, and they need quadratic T") {
     for (const table& t : force_gradient_catalog()) {
         CAPTURE(t.name());
         CHECK(t.has_force_gradient());
