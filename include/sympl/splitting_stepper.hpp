@@ -200,7 +200,9 @@ private:
             if (!resume) force_fresh_ = velocity_fresh_ = false;
             return;
         }
-        if (!gradient_ops_.empty()) return run_with_gradient(x, dt, n, resume);
+        if (!gradient_ops_.empty())
+            return options_.compensated ? run_with_gradient<true>(x, dt, n, resume)
+                                        : run_with_gradient<false>(x, dt, n, resume);
         const std::size_t L = weights_.size();
         for (std::size_t k = 1; k < L; ++k) body_[k - 1] = tail_[k - 1] = weights_[k] * dt;
         const scalar first = weights_[0] * dt;
@@ -307,7 +309,9 @@ private:
     // A force-gradient table, walked sub-step by sub-step (the force reused
     // while q has not moved). Each gradient kick costs a force and a force
     // derivative, so the walk's bookkeeping does not matter:
-    //     p += h F + 2 g dt^3 J_F M^-1 F     (table.hpp; M^-1 F = velocity(F) for quadratic T).
+    //     p += h F + 2 g dt^3 J_F M^-1 F     (table.hpp; M^-1 F = velocity(F) for quadratic T),
+    // the two terms added as two kicks.
+    template <bool Compensated>
     void run_with_gradient(State& x, scalar dt, std::size_t n, bool resume) {
         if constexpr (differentiable_force<H, vector>) {
             const Eigen::Index dim = x.q.size();
@@ -315,32 +319,22 @@ private:
             bool fresh = resume && force_fresh_;
             const scalar dt3 = dt * dt * dt;
             std::uint64_t forces = 0, velocities = 0, derivatives = 0;
-            const auto add = [this](vector& y, vector& error, const auto& increment) {
-                if (options_.compensated) {
-                    increment_ = increment;
-                    add_compensated(y, error);
-                } else {
-                    y += increment;
-                }
-            };
             for (std::size_t step = 0; step < n; ++step)
                 for (const substep& o : gradient_ops_) {
                     const scalar h = static_cast<scalar>(o.weight) * dt;
                     if (o.kind == substep::drift) {
-                        velocity(h_, x.p, velocity_);
+                        drift<Compensated>(x, velocity_, h);
                         ++velocities;
-                        add(x.q, q_error_, h * velocity_);
                         fresh = false;
                         continue;
                     }
                     if (!fresh) force(h_, x.q, force_), ++forces, fresh = true;
-                    if (o.gradient == 0) {
-                        add(x.p, p_error_, h * force_);
-                    } else {
+                    kick<Compensated>(x, force_, h);
+                    if (o.gradient != 0) {
                         velocity(h_, force_, along_);
                         force_derivative(h_, x.q, along_, force_change_);
                         ++derivatives;
-                        add(x.p, p_error_, h * force_ + (2 * static_cast<scalar>(o.gradient) * dt3) * force_change_);
+                        kick<Compensated>(x, force_change_, 2 * static_cast<scalar>(o.gradient) * dt3);
                     }
                 }
             force_fresh_ = fresh;
