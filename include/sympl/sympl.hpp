@@ -19,6 +19,7 @@
 #include "phase_space.hpp"
 #include "phase_space_measures.hpp"
 #include "poincare_section.hpp"
+#include "order_conditions.hpp"
 #include "processing.hpp"
 #include "richardson.hpp"
 #include "splitting_stepper.hpp"
