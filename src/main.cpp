@@ -102,6 +102,9 @@ void print_tables(bool json) {
               << " (to choose between methods: lower is better at equal cost).\n";
 }
 
+// The exact order from the BCH series to degree 11 certifies orders up to 10.
+constexpr int algebraic_degree = 11;
+
 int check_table(const std::string& kick_text, const std::string& drift_text, const std::string& convention, bool json) {
     const auto kick = sympl::app::parse_coefficient_list(kick_text, "--kick");
     const auto drift = sympl::app::parse_coefficient_list(drift_text, "--drift");
@@ -110,6 +113,7 @@ int check_table(const std::string& kick_text, const std::string& drift_text, con
                                                          : sympl::table("user", kick, drift);
     const auto quadratic = sympl::measure_order(t, sympl::order_problem::pendulum);
     const auto general = sympl::measure_order(t, sympl::order_problem::nonquadratic_kinetic);
+    const sympl::order_conditions_reading exact = sympl::read_order_conditions(t, algebraic_degree);
     const auto range = [](const sympl::order_measurement& m) {
         return nlohmann::json{{"largest_difference", m.largest_difference},
                               {"smallest_difference", m.smallest_difference},
@@ -126,6 +130,11 @@ int check_table(const std::string& kick_text, const std::string& drift_text, con
                                     {"order_general_read", range(general)},
                                     {"stability_interval", t.stability_interval()},
                                     {"error_at_equal_cost", sympl::error_at_equal_cost(t)},
+                                    {"algebraic_order", exact.representable ? nlohmann::json(exact.general) : nlohmann::json()},
+                                    {"algebraic_order_quadratic_T",
+                                     exact.representable ? nlohmann::json(exact.quadratic) : nlohmann::json()},
+                                    {"leading_error",
+                                     exact.representable ? nlohmann::json(exact.leading_error) : nlohmann::json()},
                                     {"kick", as_doubles(t.kick())},
                                     {"drift", as_doubles(t.drift())}};
         std::cout << out.dump() << "\n";
@@ -146,7 +155,21 @@ int check_table(const std::string& kick_text, const std::string& drift_text, con
               << "order               " << fixed(quadratic.order, 2) << "   pendulum, T = p^2/2; " << where(quadratic) << "\n"
               << "order_general       " << fixed(general.order, 2) << "   relativistic pendulum, T = sqrt(1+p^2); "
               << where(general) << "\n"
-              << "stability_interval  " << fixed(t.stability_interval(), 4)
+              << "algebraic_order     ";
+    if (!exact.representable) {
+        std::cout << "-      the coefficients overflow the series (magnitudes near the double range)\n";
+    } else {
+        const auto shown = [](int p) {
+            return p == algebraic_degree ? std::to_string(p) + "+" : std::to_string(p);
+        };
+        std::cout << std::left << std::setw(7) << shown(exact.general) << std::right
+                  << "exact, from the BCH series; T = p^2/2: " << shown(exact.quadratic);
+        if (exact.general < algebraic_degree)
+            std::cout << "; first unmet condition |E_" << exact.general + 1 << "| = "
+                      << scientific(exact.leading_error, 2);
+        std::cout << "\n";
+    }
+    std::cout << "stability_interval  " << fixed(t.stability_interval(), 4)
               << "   largest omega*dt stable on the harmonic oscillator\n"
               << "error_at_equal_cost " << scientific(sympl::error_at_equal_cost(t), 2)
               << "   pendulum at t = 3 with 300 force evaluations\n";

@@ -1,13 +1,16 @@
 // libFuzzer target: check-table's input. The bytes are two lines, the kick
 // and the drift list; they are parsed and made into a table, whose canonical
-// form, symmetry and stability interval are computed (the order measurement
-// is left out: it is the slow part, fed only by valid tables). Success or
+// form, symmetry, stability interval and order conditions (to degree 6, where
+// coefficients near the double range overflow the series) are computed (the
+// order measurement is left out: it is the slow part, fed only by valid
+// tables). Success or
 // sympl::error; anything else is a finding.
 #include <cstddef>
 #include <cstdint>
 #include <string>
 
 #include <sympl/error.hpp>
+#include <sympl/order_conditions.hpp>
 #include <sympl/table.hpp>
 
 #include "coefficient_list.hpp"
@@ -23,6 +26,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         (void)t.force_evaluations();
         (void)t.stability_interval();
         (void)sympl::adjoint(t);
+        (void)sympl::read_order_conditions(t, 6);
     } catch (const sympl::error&) {
     }
     return 0;
