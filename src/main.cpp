@@ -100,6 +100,21 @@ void print_tables(bool json) {
               << " stability: largest omega*dt stable on the harmonic oscillator;"
               << " error@300: max error on the pendulum (q0 = 1.2, p0 = 0.3) at t = 3 with 300 force evaluations"
               << " (to choose between methods: lower is better at equal cost).\n";
+    // Named methods that are not kick-drift tables (not in --json, whose entries are).
+    std::cout << "\nforce-gradient tables (kicks that add the force's derivative; systems with force_derivative or a "
+                 "templated potential):\n";
+    for (const auto& t : sympl::force_gradient_catalog())
+        std::cout << "  " << std::left << std::setw(25) << t.name() << std::right << "order " << t.order() << ", "
+                  << t.force_evaluations() << " forces and " << t.force_gradient_evaluations() << " force derivative"
+                  << (t.force_gradient_evaluations() == 1 ? "" : "s") << " a step  " << t.citation() << "\n";
+    std::cout << "\nprocessed methods (a kernel every step, its processor only where the state is looked at):\n";
+    for (const auto& m : sympl::processed_catalog()) {
+        std::size_t processor_kicks = 0;
+        for (const auto& o : m.processor) processor_kicks += o.kind == sympl::substep::kick;
+        std::cout << "  " << std::left << std::setw(25) << m.name << std::right << "effective order " << m.order << ", "
+                  << m.kernel.force_evaluations() << " forces a step, processor " << processor_kicks << " kicks  "
+                  << m.citation << "\n";
+    }
 }
 
 // The exact order from the BCH series to degree 11 certifies orders up to 10.

@@ -15,7 +15,10 @@ const std::vector<method_kind_entry>& method_kinds() {
         {method_kind::table, "table", false, false, needs::separable_hamiltonian,
          "a splitting table: the catalog's (sympl tables) or a scene's own [[table]]; extrapolated(<symmetric table>, k) "
          "extrapolates it over k runs of 1..k steps (order p + 2(k - 1)); compensated(<table>) sums the updates with "
-         "Kahan's compensation"},
+         "Kahan's compensation; a force-gradient table (chin_4a, ...) also needs the force's derivative"},
+        {method_kind::processed, "processed", false, false, needs::separable_hamiltonian,
+         "a processed method (blanes_2001_p6, ...): a kernel every step, its processor only where the state is "
+         "looked at; every output is the true state"},
         {method_kind::logh, "logh", false, false, needs::negative_potential,
          "logh(<table>): the table in LogH fictitious time (Mikkola & Tanikawa 1999); dt is the fictitious step; "
          "extrapolated(logh(<symmetric table>), k) as above"},
@@ -49,6 +52,12 @@ std::string why_not(needs n, const system_form& form) {
                                   : "needs Newton's form x'' = a(x, v, t); this system is Hamiltonian (use velocity_verlet)";
         case needs::damped_split:
             return form.damped_split ? "" : "needs a force split as F(x, t) - G(v); only damped_oscillator has one";
+        case needs::differentiable_force:
+            if (!form.separable_hamiltonian) return why_not(needs::separable_hamiltonian, form);
+            return form.differentiable_force ? ""
+                                             : "needs the force's derivative J_F(q) u (force-gradient kicks); this "
+                                               "system gives neither force_derivative nor a potential templated on its "
+                                               "scalar (use a table without force-gradient kicks)";
         case needs::negative_potential:
             if (!form.separable_hamiltonian) return why_not(needs::separable_hamiltonian, form);
             return form.negative_potential ? ""
@@ -63,6 +72,8 @@ std::vector<std::string> method_names_beside_tables() {
     std::apply([&](const auto&... m) { (names.push_back(m.name), ...); }, classic_methods);
     for (const char* odeint : {"odeint_rk4", "odeint_dopri5", "odeint_fehlberg78", "odeint_bulirsch_stoer"})
         names.push_back(odeint);
+    for (const table& t : force_gradient_catalog()) names.push_back(t.name());
+    for (const processed_method& m : processed_catalog()) names.push_back(m.name);
     return names;
 }
 
@@ -115,6 +126,10 @@ std::optional<method_spec> resolve_method(const std::string& name, const std::ma
     if (name.size() > 6 && name.rfind("logh(", 0) == 0 && name.back() == ')') {
         auto inner = resolve_method(name.substr(5, name.size() - 6), inline_tables);
         if (!inner || inner->kind != method_kind::table) return std::nullopt;
+        // LogH's extended Hamiltonian has no force derivative of its own.
+        if (inner->coefficients->has_force_gradient())
+            throw invalid_argument("method '" + name + "': '" + inner->name +
+                                   "' has force-gradient kicks; expected logh(<table without them>)");
         return method_spec{name, method_kind::logh, inner->coefficients};
     }
     for (const auto& [odeint, kind] : {std::pair{"odeint_rk4", method_kind::odeint_rk4},
@@ -125,6 +140,10 @@ std::optional<method_spec> resolve_method(const std::string& name, const std::ma
     if (is_classic(name)) return method_spec{name, method_kind::classic, std::nullopt};
     const auto& names = catalog_names();
     if (std::find(names.begin(), names.end(), name) != names.end()) return method_spec{name, method_kind::table, method(name)};
+    for (const table& t : force_gradient_catalog())
+        if (t.name() == name) return method_spec{name, method_kind::table, t};
+    for (const processed_method& p : processed_catalog())
+        if (p.name == name) return method_spec{name, method_kind::processed, std::nullopt, p};
     return std::nullopt;
 }
 
@@ -135,11 +154,14 @@ std::string why_not_resumable(const method_spec& m) {
         return "";
     return "method '" + m.name + "' cannot be checkpointed: " +
            (history ? std::string("it carries a history between steps that the state does not hold")
-                    : std::string("only tables (plain or compensated(<table>)) and the classic steppers without "
-                                  "history (euler, euler_cromer, euler_richardson, rk2, rk4) resume bit for bit"));
+            : m.kind == method_kind::processed
+                ? std::string("its kernel runs on a processed state that the true state does not hold")
+                : std::string("only tables (plain or compensated(<table>)) and the classic steppers without "
+                              "history (euler, euler_cromer, euler_richardson, rk2, rk4) resume bit for bit"));
 }
 
 needs requirement_of(const method_spec& m) {
+    if (m.kind == method_kind::table && m.coefficients->has_force_gradient()) return needs::differentiable_force;
     if (m.kind != method_kind::classic) return entry_of(m.kind).requirement;  // logh: also a separable Hamiltonian
     needs n = needs::any;
     std::apply([&](const auto&... c) { ((m.name == c.name ? void(n = c.requirement) : void()), ...); }, classic_methods);

@@ -10,16 +10,18 @@
 #include <vector>
 
 #include <sympl/classic_steppers.hpp>
+#include <sympl/processing.hpp>
 #include <sympl/table.hpp>
 
 namespace sympl::app {
 
-enum class method_kind { table, logh, classic, odeint_rk4, odeint_dopri5, odeint_fehlberg78, odeint_bulirsch_stoer };
+enum class method_kind { table, processed, logh, classic, odeint_rk4, odeint_dopri5, odeint_fehlberg78, odeint_bulirsch_stoer };
 
 struct method_spec {
     std::string name;
     method_kind kind = method_kind::table;
-    std::optional<table> coefficients;  // for kind == table and logh
+    std::optional<table> coefficients;  // for kind == table (force-gradient tables too) and logh
+    std::optional<processed_method> processing = std::nullopt;  // for kind == processed
     int extrapolation_columns = 0;      // extrapolated(<table or logh(table)>, k): k > 0
     bool compensated = false;           // compensated(<table>): Kahan-summed updates
 };
@@ -30,9 +32,10 @@ struct system_form {
     bool newtonian = false;              // x'' = a(x, v, t), q = x and p = v
     bool damped_split = false;           // a force split as F(x, t) - G(v)
     bool negative_potential = false;     // V(q) < 0 everywhere (gravitation): what LogH needs
+    bool differentiable_force = false;   // J_F(q) u, analytic or by dual numbers: what force-gradient kicks need
 };
 
-enum class needs { any, separable_hamiltonian, newtonian, damped_split, negative_potential };
+enum class needs { any, separable_hamiltonian, newtonian, damped_split, negative_potential, differentiable_force };
 
 // Why a method that needs `n` cannot run on a system of `form` ("" when it can).
 std::string why_not(needs n, const system_form& form);
@@ -84,19 +87,22 @@ inline constexpr std::tuple classic_methods{
 };
 
 // The names a scene may give beside the catalog's and its own [[table]]s
-// (and logh(<table>)): the classic steppers and the Odeint kinds.
+// (and logh(<table>)): the classic steppers, the Odeint kinds, the
+// force-gradient tables and the processed methods.
 std::vector<std::string> method_names_beside_tables();
 
 // The method a scene names: an inline table first, then an Odeint kind, a
-// classic stepper, a catalog table, and logh(<any of the tables>) for the
-// table run in LogH fictitious time, and extrapolated(<table or logh(table)>, k);
-// nullopt when the name is none of these. A malformed extrapolated(...) is an
+// classic stepper, a catalog table, a force-gradient table, a processed
+// method, and logh(<any of the plain tables>) for the table run in LogH
+// fictitious time, and extrapolated(<table or logh(table)>, k); nullopt when
+// the name is none of these. A malformed extrapolated(...) or logh(...) is an
 // invalid_argument that says what is wrong.
 inline constexpr int max_extrapolation_columns = 12;
 std::optional<method_spec> resolve_method(const std::string& name, const std::map<std::string, table>& inline_tables);
 
 // Why a checkpointed run of `m` could not be resumed bit for bit ("" when it
-// can): tables, plain or compensated, and the classic steppers without history.
+// can): tables (force-gradient ones too), plain or compensated, and the
+// classic steppers without history.
 std::string why_not_resumable(const method_spec& m);
 
 // What `m` needs of a system.

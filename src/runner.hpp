@@ -110,14 +110,17 @@ constexpr bool meets() {
     if constexpr (N == needs::any) return true;
     else if constexpr (N == needs::separable_hamiltonian || N == needs::negative_potential)
         return separable_hamiltonian<Sys, State::vector>;
-    else if constexpr (N == needs::newtonian) return newtonian_form<E>;
+    else if constexpr (N == needs::differentiable_force) {
+        if constexpr (separable_hamiltonian<Sys, State::vector>) return differentiable_force<Sys, State::vector>;
+        else return false;
+    } else if constexpr (N == needs::newtonian) return newtonian_form<E>;
     else return damped_newtonian_form<E, State>;
 }
 
 template <class Sys>
 system_form form_of() {
     return {meets<needs::separable_hamiltonian, Sys>(), meets<needs::newtonian, Sys>(), meets<needs::damped_split, Sys>(),
-            false};
+            false, meets<needs::differentiable_force, Sys>()};
 }
 
 template <class Sys>
@@ -242,11 +245,18 @@ private:
         switch (m.kind) {
             case method_kind::table:
                 if constexpr (meets<needs::separable_hamiltonian, Sys>()) {
+                    if constexpr (!meets<needs::differentiable_force, Sys>())
+                        if (m.coefficients->has_force_gradient()) refuse<Sys>(m.name, needs::differentiable_force);
                     splitting_stepper<Sys, State> stepper(sys_, *m.coefficients, {m.compensated});
                     if (m.extrapolation_columns > 0)
                         return with_driver(extrapolation_stepper(std::move(stepper), m.extrapolation_columns));
                     return with_driver(std::move(stepper));
                 } else
+                    refuse<Sys>(m.name, needs::separable_hamiltonian);
+            case method_kind::processed:
+                if constexpr (meets<needs::separable_hamiltonian, Sys>())
+                    return with_driver(processed_stepper<Sys, State>(sys_, *m.processing));
+                else
                     refuse<Sys>(m.name, needs::separable_hamiltonian);
             case method_kind::logh:
                 if constexpr (meets<needs::separable_hamiltonian, Sys>())

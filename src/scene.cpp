@@ -213,6 +213,9 @@ ensemble_spec read_ensemble(const reader& r, const toml::node& node, const scene
     if (s.methods.size() != 1 || s.methods[0].kind != method_kind::table || s.methods[0].compensated ||
         s.methods[0].extrapolation_columns > 0)
         r.fail(methods, "an ensemble runs one splitting table; expected methods = [\"<table>\"] (one catalog or [[table]] name)");
+    if (s.methods[0].coefficients->has_force_gradient())
+        r.fail(methods, "an ensemble runs plain kick-drift tables; '" + s.methods[0].name +
+                            "' has force-gradient kicks (expected a catalog or [[table]] name)");
     if (s.dt.size() != 1) r.fail(node, "an ensemble runs one step size; expected dt = <number>, not a sweep");
     return e;
 }

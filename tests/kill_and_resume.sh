@@ -3,7 +3,7 @@
 # (--resume) until it finishes gives outputs byte-identical to an
 # uninterrupted run: the printed summary (final states to 17 digits, energy
 # and final errors, step and force counts) and every trajectory CSV, for a
-# table, a compensated table and a classic stepper (RK4).
+# table, a compensated table, a force-gradient table and a classic stepper (RK4).
 # Usage: kill_and_resume.sh PROGRAM WORKDIR
 set -u
 program=$1
@@ -14,7 +14,7 @@ cat > scene.toml <<'TOML'
 name = "resume"
 system = "kepler"
 parameters = {eccentricity = 0.6}
-methods = ["blanes_moan_s6", "compensated(leapfrog_kdk)", "rk4"]
+methods = ["blanes_moan_s6", "compensated(leapfrog_kdk)", "chin_4a", "rk4"]
 t_end = 20000
 dt = 0.01
 checkpoint = {every_steps = 20000, file = "state/resume"}

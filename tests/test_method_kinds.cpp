@@ -24,6 +24,36 @@ TEST_CASE("method kinds: a name resolves to its kind, a scene's table comes firs
     CHECK_FALSE(entry_of(method_kind::odeint_rk4).adaptive);
 }
 
+TEST_CASE("method kinds: force-gradient tables and processed methods by name, and what they refuse") {
+    const auto fg = resolve_method("chin_4a", {});
+    REQUIRE(fg);
+    CHECK(fg->kind == method_kind::table);
+    CHECK(fg->coefficients->has_force_gradient());
+    CHECK(requirement_of(*fg) == needs::differentiable_force);
+    CHECK(why_not_resumable(*fg).empty());
+    const auto processed = resolve_method("bcm_2006_p8", {});
+    REQUIRE(processed);
+    CHECK(processed->kind == method_kind::processed);
+    CHECK(processed->processing->order == 8);
+    CHECK(requirement_of(*processed) == needs::separable_hamiltonian);
+    CHECK(why_not_resumable(*processed).find("processed state") != std::string::npos);
+    CHECK(resolve_method("compensated(chin_4a)", {})->compensated);
+    CHECK_FALSE(resolve_method("compensated(bcm_2006_p8)", {}));
+    CHECK_FALSE(resolve_method("logh(bcm_2006_p8)", {}));
+    CHECK_THROWS_WITH_AS(resolve_method("logh(chin_4a)", {}), doctest::Contains("'chin_4a' has force-gradient kicks"),
+                         sympl::invalid_argument);
+    CHECK_THROWS_WITH_AS(resolve_method("extrapolated(bcm_2006_p8, 2)", {}),
+                         doctest::Contains("is not a table or logh(<table>)"), sympl::invalid_argument);
+    // A Hamiltonian without the force's derivative: the reason, in the registry's words.
+    system_form plain{true, false, false};
+    CHECK(why_not(*fg, plain) ==
+          "method 'chin_4a' needs the force's derivative J_F(q) u (force-gradient kicks); this system gives neither "
+          "force_derivative nor a potential templated on its scalar (use a table without force-gradient kicks)");
+    plain.differentiable_force = true;
+    CHECK(why_not(*fg, plain).empty());
+    CHECK(why_not(*fg, system_form{false, true, true}).find("needs a separable Hamiltonian") != std::string::npos);
+}
+
 TEST_CASE("method kinds: what each needs, and the reason when a system lacks it") {
     const system_form hamiltonian{true, false, false}, damped{false, true, true};
     const auto m = [](const char* name) { return *resolve_method(name, {}); };

@@ -116,6 +116,10 @@ TEST_CASE("scene: an [ensemble] is read in the file's axis order, and its errors
     with_rk4.replace(with_rk4.find("leapfrog_kdk"), 12, "rk4");
     CHECK(error_of(with_rk4 + "grid = {q2 = {from = 0, to = 1, count = 2}}\n")
               .find("an ensemble runs one splitting table") != std::string::npos);
+    std::string with_gradient = base;
+    with_gradient.replace(with_gradient.find("leapfrog_kdk"), 12, "chin_4a");
+    CHECK(error_of(with_gradient + "grid = {q2 = {from = 0, to = 1, count = 2}}\n")
+              .find("an ensemble runs plain kick-drift tables; 'chin_4a' has force-gradient kicks") != std::string::npos);
     CHECK(error_of(base + "states = \"x.csv\"\ngrid = {q2 = {from = 0, to = 1, count = 2}}\n").find("either grid") !=
           std::string::npos);
 }

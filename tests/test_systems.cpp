@@ -28,8 +28,9 @@ std::vector<method_spec> every_method() {
 
 TEST_CASE("systems: every system runs every method the registry says it can, and refuses every other") {
     const auto methods = every_method();
-    // 10 classic names, 4 Odeint kinds, a catalog and an inline table, a logh, two extrapolated
-    CHECK(methods.size() == 19);
+    // 10 classic names, 4 Odeint kinds, the force-gradient tables and processed methods, a catalog
+    // and an inline table, a logh, two extrapolated
+    CHECK(methods.size() == 19 + sympl::force_gradient_catalog().size() + sympl::processed_catalog().size());
     for (const system_entry& entry : systems()) {
         const problem p = make_problem(entry.name, {}, {}, {}, "test");
         for (const method_spec& m : methods) {
