@@ -5,12 +5,24 @@
 // random starts, in long double, down to its rounding; each solution is rated
 // by its leading error (the norm of E_(p+1), RKN part) and printed as the
 // table sympl would store.
-//   derive_nystrom [--order 8] [--kicks 17] [--shape aba|bab] [--starts 2000] [--seed 1] [--keep 5]
+//
+// With --processor M the table is the kernel K of a processed method
+// P K^n P^-1 (processing.hpp) and the conditions are those of P K P^-1 (all
+// degrees: the conjugated step is not symmetric); P is M (drift, kick) pairs
+// whose drift and kick weights each sum to zero.
+//
+// With --polish N, each root then descends N times along the family of roots
+// (the defects' null space, where there are more unknowns than conditions)
+// to lower its leading error, projected back onto the roots after each step.
+//
+//   derive_nystrom [--order 8] [--kicks 17] [--shape aba|bab] [--processor M] [--polish N]
+//                  [--starts 2000] [--seed 1] [--keep 5]
 // aba: drift first and last (a step costs `kicks` forces); bab: kick first and
 // last (the last kick joins the next step's first: `kicks` - 1 forces).
-// Unknowns: the first half of the symmetric sequence of weights; conditions:
-// 2 (consistency) + 2, 4, 10 (degrees 3, 5, 7) for order 8. Even degrees vanish
-// by symmetry.
+// Unknowns: the first half of the symmetric sequence of weights (and the
+// processor's weights but its last pair); conditions without a processor:
+// 2 (consistency) + 2, 4, 10 (degrees 3, 5, 7) for order 8, the even degrees
+// vanishing by symmetry.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -23,6 +35,7 @@
 #include <Eigen/Dense>
 
 #include <sympl/order_conditions.hpp>
+#include <sympl/processing.hpp>
 
 namespace {
 
@@ -35,28 +48,57 @@ using vector = Eigen::Matrix<coefficient, Eigen::Dynamic, 1>;
 struct shape {
     std::size_t kicks;
     bool kick_first;
+    std::size_t processor_pairs = 0;
     std::size_t operations() const { return kick_first ? 2 * kicks - 1 : 2 * kicks + 1; }
-    std::size_t unknowns() const { return (operations() + 1) / 2; }
+    std::size_t kernel_unknowns() const { return (operations() + 1) / 2; }
+    std::size_t unknowns() const { return kernel_unknowns() + (processor_pairs > 0 ? 2 * processor_pairs - 2 : 0); }
     std::size_t forces() const { return kick_first ? kicks - 1 : kicks; }
 
-    std::vector<substep> sequence(const vector& half) const {
+    // The kernel: the symmetric sequence whose first half leads x.
+    std::vector<substep> kernel(const vector& x) const {
         const std::size_t n = operations();
         std::vector<substep> ops(n);
         for (std::size_t i = 0; i < n; ++i) {
             const std::size_t j = std::min(i, n - 1 - i);
             const bool kick = (i % 2 == 0) == kick_first;
-            ops[i] = {kick ? substep::kick : substep::drift, half[Eigen::Index(j)]};
+            ops[i] = {kick ? substep::kick : substep::drift, x[Eigen::Index(j)]};
         }
+        return ops;
+    }
+
+    // P, in order of application: the pairs after the kernel's unknowns, and
+    // a last pair that brings both sums to zero.
+    std::vector<substep> processor(const vector& x) const {
+        std::vector<substep> ops;
+        if (processor_pairs == 0) return ops;
+        coefficient drifts = 0, kicks_sum = 0;
+        for (std::size_t i = 0; i + 1 < processor_pairs; ++i) {
+            const Eigen::Index at = Eigen::Index(kernel_unknowns() + 2 * i);
+            ops.push_back({substep::drift, x[at]});
+            ops.push_back({substep::kick, x[at + 1]});
+            drifts += x[at], kicks_sum += x[at + 1];
+        }
+        ops.push_back({substep::drift, -drifts});
+        ops.push_back({substep::kick, -kicks_sum});
+        return ops;
+    }
+
+    // One step of the method the conditions are about: K, or P K P^-1.
+    std::vector<substep> step(const vector& x) const {
+        std::vector<substep> ops = sympl::inverse(processor(x));
+        const std::vector<substep> k = kernel(x), p = processor(x);
+        ops.insert(ops.end(), k.begin(), k.end());
+        ops.insert(ops.end(), p.begin(), p.end());
         return ops;
     }
 };
 
-// The conditions of degrees 1, 3, .., order - 1 (the odd ones; even ones
-// vanish for symmetric sequences), stacked.
-vector defects(const shape& s, const vector& half, int order) {
-    const sympl::word_series field = sympl::modified_field(s.sequence(half), order - 1);
+// The conditions of degrees 1 .. order (without a processor only the odd
+// ones: the even ones vanish for symmetric sequences), stacked.
+vector defects(const shape& s, const vector& x, int order) {
+    const sympl::word_series field = sympl::modified_field(s.step(x), order);
     std::vector<coefficient> all;
-    for (int k = 1; k < order; k += 2) {
+    for (int k = 1; k <= order; k += s.processor_pairs > 0 ? 1 : 2) {
         // Scaled by kicks^(k-1): with M steps of about 1/M the degree-k defect is
         // of size M^(1-k), and unscaled the high degrees look solved long before they are.
         const coefficient scale = std::pow(coefficient(s.kicks), coefficient(k - 1));
@@ -65,26 +107,37 @@ vector defects(const shape& s, const vector& half, int order) {
     return Eigen::Map<const vector>(all.data(), Eigen::Index(all.size()));
 }
 
-matrix jacobian(const shape& s, const vector& x, int order) {
+// The leading error: |E_(order + 1)|, RKN part.
+coefficient leading_error(const shape& s, const vector& x, int order) {
+    return sympl::condition_residual(sympl::modified_field(s.step(x), order + 1), order + 1,
+                                     kinetic_requirement::quadratic);
+}
+
+template <class F>
+matrix central_differences(const vector& x, F&& f) {
     const coefficient h = 1e-8L;
     matrix j;
     for (Eigen::Index i = 0; i < x.size(); ++i) {
         vector up = x, down = x;
         up[i] += h, down[i] -= h;
-        const vector d = (defects(s, up, order) - defects(s, down, order)) / (2 * h);
+        const vector d = (f(up) - f(down)) / (2 * h);
         if (j.size() == 0) j.resize(d.size(), x.size());
         j.col(i) = d;
     }
     return j;
 }
 
+matrix jacobian(const shape& s, const vector& x, int order) {
+    return central_differences(x, [&](const vector& y) { return defects(s, y, order); });
+}
+
 // Levenberg-Marquardt; returns the final residual norm.
-coefficient solve(const shape& s, vector& x, int order) {
+coefficient solve(const shape& s, vector& x, int order, int iterations = 200) {
     coefficient lambda = 1e-3L;
     vector r = defects(s, x, order);
     coefficient norm = r.norm();
     coefficient earlier = norm;
-    for (int iteration = 0; iteration < 200 && norm > 1e-17L; ++iteration) {  // down to long double's rounding
+    for (int iteration = 0; iteration < iterations && norm > 1e-17L; ++iteration) {  // down to long double's rounding
         if (iteration % 25 == 24) {  // a start that stalls far from a root is abandoned
             if (norm > 1e-6L && norm > 0.5L * earlier) break;
             earlier = norm;
@@ -113,15 +166,51 @@ coefficient solve(const shape& s, vector& x, int order) {
     return norm;
 }
 
+// Descends the leading error along the family of roots through x: the
+// error's gradient projected onto the null space of the defects' Jacobian,
+// a step that halves until the root, restored by solve(), has a smaller
+// error. Returns the number of accepted steps.
+int polish(const shape& s, vector& x, int order, int steps) {
+    coefficient error = leading_error(s, x, order), length = 0.05L;
+    int accepted = 0;
+    for (int k = 0; k < steps && length > 1e-9L; ++k) {
+        const matrix j = jacobian(s, x, order);
+        const vector grad = central_differences(x, [&](const vector& y) {
+                                return vector::Constant(1, leading_error(s, y, order));
+                            }).row(0).transpose();
+        // The family's tangent space: the null space of J, from the
+        // eigenvalues of J^T J (increasing) below 1e-14 of the largest, that
+        // is singular values below 1e-7 (J's rows are the defects of all
+        // words, dependent, and known to ~1e-11 relative).
+        const Eigen::SelfAdjointEigenSolver<matrix> eigen(j.transpose() * j);
+        const auto& values = eigen.eigenvalues();
+        Eigen::Index null = 0;
+        while (null < values.size() && values[null] < 1e-14L * values[values.size() - 1]) ++null;
+        const matrix tangent = eigen.eigenvectors().leftCols(null);
+        const vector along = tangent * (tangent.transpose() * grad);
+        if (!(along.norm() > 1e-30L)) break;  // no family, or already at its minimum
+        bool better = false;
+        while (!better && length > 1e-9L) {
+            vector trial = x - length * along / along.norm();
+            if (solve(s, trial, order, 30) < 1e-13L) {
+                const coefficient e = leading_error(s, trial, order);
+                if (e < error) x = trial, error = e, better = true, ++accepted, length *= 1.5L;
+            }
+            if (!better) length /= 2;
+        }
+    }
+    return accepted;
+}
+
 struct found {
-    vector half;
+    vector x;
     coefficient residual, error, effective, total;
 };
 
 }  // namespace
 
 int main(int argc, char** argv) {
-    int order = 8, keep = 5;
+    int order = 8, keep = 5, polish_steps = 0;
     long starts = 2000;
     unsigned seed = 1;
     shape s{17, false};
@@ -131,16 +220,21 @@ int main(int argc, char** argv) {
         if (a == "--order" && more) order = std::atoi(argv[++i]);
         else if (a == "--kicks" && more) s.kicks = std::size_t(std::atol(argv[++i]));
         else if (a == "--shape" && more) s.kick_first = std::string(argv[++i]) == "bab";
+        else if (a == "--processor" && more) s.processor_pairs = std::size_t(std::atol(argv[++i]));
+        else if (a == "--polish" && more) polish_steps = std::atoi(argv[++i]);
         else if (a == "--starts" && more) starts = std::atol(argv[++i]);
         else if (a == "--seed" && more) seed = unsigned(std::atol(argv[++i]));
         else if (a == "--keep" && more) keep = std::atoi(argv[++i]);
         else {
-            std::fprintf(stderr, "usage: derive_nystrom [--order 8] [--kicks 17] [--shape aba|bab] [--starts N] [--seed S] [--keep K]\n");
+            std::fprintf(stderr, "usage: derive_nystrom [--order 8] [--kicks 17] [--shape aba|bab] [--processor M] "
+                                 "[--polish N] [--starts N] [--seed S] [--keep K]\n");
             return 2;
         }
     }
-    if (order < 2 || order > 10 || order % 2 || s.kicks < 2 || s.kicks > 40 || starts < 1 || keep < 1) {
-        std::fprintf(stderr, "derive_nystrom: expected an even order in 2 .. 10, 2 .. 40 kicks, starts and keep >= 1\n");
+    if (order < 2 || order > 10 || order % 2 || s.kicks < 2 || s.kicks > 40 || s.processor_pairs > 40 ||
+        polish_steps < 0 || polish_steps > 100000 || starts < 1 || keep < 1) {
+        std::fprintf(stderr, "derive_nystrom: expected an even order in 2 .. 10, 2 .. 40 kicks, at most 40 processor "
+                             "pairs, 0 .. 100000 polish steps, starts and keep >= 1\n");
         return 2;
     }
     std::mt19937_64 random(seed);
@@ -151,22 +245,32 @@ int main(int argc, char** argv) {
     for (long start = 0; start < starts; ++start) {
         vector x(n);
         for (Eigen::Index i = 0; i < n; ++i) {
+            if (i >= Eigen::Index(s.kernel_unknowns())) {  // the processor: near the identity
+                x[i] = coefficient(0.2 * normal(random));
+                continue;
+            }
             const bool kick = (i % 2 == 0) == s.kick_first;
             const double share = kick ? 1.0 / double(s.kicks) : 1.0 / double(s.operations() - s.kicks);
             x[i] = coefficient(share * (1 + 1.5 * normal(random)));
         }
-        const coefficient residual = solve(s, x, order);
+        coefficient residual = solve(s, x, order);
         if ((start + 1) % 100 == 0) std::fprintf(stderr, "%ld starts, %ld converged\n", start + 1, converged);
         if (!(residual < 1e-11L)) {
             if (std::getenv("DERIVE_VERBOSE")) std::fprintf(stderr, "start %ld: stopped at residual %.2Le, max |w| %.2Lf\n", start, residual, x.cwiseAbs().maxCoeff());
             continue;
         }
         ++converged;
-        const auto ops = s.sequence(x);
-        const sympl::word_series field = sympl::modified_field(ops, order + 1);
-        const coefficient error = sympl::condition_residual(field, order + 1, kinetic_requirement::quadratic);
+        if (polish_steps > 0) {
+            const coefficient before = leading_error(s, x, order);
+            const int accepted = polish(s, x, order, polish_steps);
+            residual = solve(s, x, order);
+            std::fprintf(stderr, "start %ld: polished %d steps, error %.3Le -> %.3Le\n", start, accepted, before,
+                         leading_error(s, x, order));
+            if (!(residual < 1e-11L)) continue;
+        }
+        const coefficient error = leading_error(s, x, order);
         coefficient total = 0;
-        for (const substep& o : ops) total += std::fabs(o.weight);
+        for (const substep& o : s.kernel(x)) total += std::fabs(o.weight);
         solutions.push_back({x, residual, error, coefficient(s.forces()) * std::pow(error, 1.0L / order), total});
         std::fprintf(stderr, "start %ld: residual %.1Le, error %.3Le, effective %.4Lf, sum |w| %.3Lf\n", start, residual,
                      error, solutions.back().effective, total);
@@ -174,21 +278,30 @@ int main(int argc, char** argv) {
     std::sort(solutions.begin(), solutions.end(), [](const found& a, const found& b) { return a.effective < b.effective; });
     // The same root reached from several starts is printed once.
     solutions.erase(std::unique(solutions.begin(), solutions.end(),
-                                [](const found& a, const found& b) { return (a.half - b.half).norm() < 1e-9L; }),
+                                [](const found& a, const found& b) { return (a.x - b.x).norm() < 1e-9L; }),
                     solutions.end());
-    std::printf("# order %d, %zu kicks, %s, %zu forces a step: %ld of %ld starts converged, %zu distinct roots\n", order,
-                s.kicks, s.kick_first ? "kick first" : "drift first", s.forces(), converged, starts, solutions.size());
+    std::printf("# order %d%s, %zu kicks, %s, %zu forces a step: %ld of %ld starts converged, %zu distinct roots\n",
+                order, s.processor_pairs > 0 ? " (effective, processed)" : "", s.kicks,
+                s.kick_first ? "kick first" : "drift first", s.forces(), converged, starts, solutions.size());
     for (int k = 0; k < keep && k < int(solutions.size()); ++k) {
         const found& f = solutions[std::size_t(k)];
         std::printf("# error %.4Le, effective error %.4Lf, sum |w| %.4Lf, residual %.1Le\n", f.error, f.effective, f.total,
                     f.residual);
         std::vector<coefficient> kick, drift;
-        for (const substep& o : s.sequence(f.half)) (o.kind == substep::kick ? kick : drift).push_back(o.weight);
-        std::printf("kick  {");
-        for (std::size_t i = 0; i < kick.size(); ++i) std::printf("%s%.21LgL", i ? ", " : "", kick[i]);
-        std::printf("}\ndrift {");
-        for (std::size_t i = 0; i < drift.size(); ++i) std::printf("%s%.21LgL", i ? ", " : "", drift[i]);
-        std::printf("}\n");
+        for (const substep& o : s.kernel(f.x)) (o.kind == substep::kick ? kick : drift).push_back(o.weight);
+        const auto list = [](const char* label, const std::vector<coefficient>& w) {
+            std::printf("%s{", label);
+            for (std::size_t i = 0; i < w.size(); ++i) std::printf("%s%.21LgL", i ? ", " : "", w[i]);
+            std::printf("}\n");
+        };
+        list("kick  ", kick);
+        list("drift ", drift);
+        if (s.processor_pairs > 0) {  // in order of application, pairs (drift, kick)
+            std::vector<coefficient> pd, pk;
+            for (const substep& o : s.processor(f.x)) (o.kind == substep::kick ? pk : pd).push_back(o.weight);
+            list("processor drift ", pd);
+            list("processor kick  ", pk);
+        }
     }
     return solutions.empty() ? 1 : 0;
 }
