@@ -11,11 +11,17 @@
 // degrees: the conjugated step is not symmetric); P is M (drift, kick) pairs
 // whose drift and kick weights each sum to zero.
 //
+// With --effective the kernel is solved alone, from its effective-order
+// conditions (order_conditions.hpp: what conjugation by some processor cannot
+// remove, degree by degree), far fewer than those of P K P^-1; with
+// --processor M as well, a processor is then solved for each kernel root
+// (the conditions of P K P^-1 with K fixed, from random starts).
+//
 // With --polish N, each root then descends N times along the family of roots
 // (the defects' null space, where there are more unknowns than conditions)
 // to lower its leading error, projected back onto the roots after each step.
 //
-//   derive_nystrom [--order 8] [--kicks 17] [--shape aba|bab] [--processor M] [--polish N]
+//   derive_nystrom [--order 8] [--kicks 17] [--shape aba|bab] [--processor M] [--effective] [--polish N]
 //                  [--starts 2000] [--seed 1] [--keep 5]
 // aba: drift first and last (a step costs `kicks` forces); bab: kick first and
 // last (the last kick joins the next step's first: `kicks` - 1 forces).
@@ -49,9 +55,11 @@ struct shape {
     std::size_t kicks;
     bool kick_first;
     std::size_t processor_pairs = 0;
+    bool effective = false;  // kernel alone, effective-order conditions; the processor solved after
     std::size_t operations() const { return kick_first ? 2 * kicks - 1 : 2 * kicks + 1; }
     std::size_t kernel_unknowns() const { return (operations() + 1) / 2; }
-    std::size_t unknowns() const { return kernel_unknowns() + (processor_pairs > 0 ? 2 * processor_pairs - 2 : 0); }
+    std::size_t processor_unknowns() const { return processor_pairs > 0 ? 2 * processor_pairs - 2 : 0; }
+    std::size_t unknowns() const { return kernel_unknowns() + (effective ? 0 : processor_unknowns()); }
     std::size_t forces() const { return kick_first ? kicks - 1 : kicks; }
 
     // The kernel: the symmetric sequence whose first half leads x.
@@ -93,9 +101,22 @@ struct shape {
     }
 };
 
+namespace effective {
+// The effective-order defects of a kernel (order_conditions.hpp), degrees
+// `from` .. order stacked, each scaled by scale_base^(k-1).
+vector defects(const std::vector<substep>& kernel, int order, coefficient scale_base, int from = 1) {
+    const auto per_degree = sympl::effective_condition_defects(kernel, order, kinetic_requirement::quadratic);
+    std::vector<coefficient> all;
+    for (int k = from; k <= order; ++k)
+        for (coefficient d : per_degree[std::size_t(k - 1)]) all.push_back(std::pow(scale_base, coefficient(k - 1)) * d);
+    return Eigen::Map<const vector>(all.data(), Eigen::Index(all.size()));
+}
+}  // namespace effective
+
 // The conditions of degrees 1 .. order (without a processor only the odd
 // ones: the even ones vanish for symmetric sequences), stacked.
 vector defects(const shape& s, const vector& x, int order) {
+    if (s.effective) return effective::defects(s.kernel(x), order, coefficient(s.kicks));
     const sympl::word_series field = sympl::modified_field(s.step(x), order);
     std::vector<coefficient> all;
     for (int k = 1; k <= order; k += s.processor_pairs > 0 ? 1 : 2) {
@@ -107,8 +128,10 @@ vector defects(const shape& s, const vector& x, int order) {
     return Eigen::Map<const vector>(all.data(), Eigen::Index(all.size()));
 }
 
+
 // The leading error: |E_(order + 1)|, RKN part.
 coefficient leading_error(const shape& s, const vector& x, int order) {
+    if (s.effective) return effective::defects(s.kernel(x), order + 1, 1, order + 1).norm();
     return sympl::condition_residual(sympl::modified_field(s.step(x), order + 1), order + 1,
                                      kinetic_requirement::quadratic);
 }
@@ -132,9 +155,10 @@ matrix jacobian(const shape& s, const vector& x, int order) {
 }
 
 // Levenberg-Marquardt; returns the final residual norm.
-coefficient solve(const shape& s, vector& x, int order, int iterations = 200) {
+template <class F>
+coefficient solve_for(F&& defects_of, vector& x, int iterations = 200) {
     coefficient lambda = 1e-3L;
-    vector r = defects(s, x, order);
+    vector r = defects_of(x);
     coefficient norm = r.norm();
     coefficient earlier = norm;
     for (int iteration = 0; iteration < iterations && norm > 1e-17L; ++iteration) {  // down to long double's rounding
@@ -142,7 +166,7 @@ coefficient solve(const shape& s, vector& x, int order, int iterations = 200) {
             if (norm > 1e-6L && norm > 0.5L * earlier) break;
             earlier = norm;
         }
-        const matrix j = jacobian(s, x, order);
+        const matrix j = central_differences(x, defects_of);
         const matrix jtj = j.transpose() * j;
         const vector g = j.transpose() * r;
         bool improved = false;
@@ -151,7 +175,7 @@ coefficient solve(const shape& s, vector& x, int order, int iterations = 200) {
             a.diagonal() += lambda * (jtj.diagonal().array() + 1e-12L).matrix();
             const vector step = a.ldlt().solve(-g);
             const vector trial = x + step;
-            const vector rt = defects(s, trial, order);
+            const vector rt = defects_of(trial);
             const coefficient nt = rt.norm();
             if (std::isfinite(nt) && nt < norm) {
                 x = trial, r = rt, norm = nt;
@@ -164,6 +188,10 @@ coefficient solve(const shape& s, vector& x, int order, int iterations = 200) {
         if (!improved || x.cwiseAbs().maxCoeff() > 5) break;
     }
     return norm;
+}
+
+coefficient solve(const shape& s, vector& x, int order, int iterations = 200) {
+    return solve_for([&](const vector& y) { return defects(s, y, order); }, x, iterations);
 }
 
 // Descends the leading error along the family of roots through x: the
@@ -221,13 +249,14 @@ int main(int argc, char** argv) {
         else if (a == "--kicks" && more) s.kicks = std::size_t(std::atol(argv[++i]));
         else if (a == "--shape" && more) s.kick_first = std::string(argv[++i]) == "bab";
         else if (a == "--processor" && more) s.processor_pairs = std::size_t(std::atol(argv[++i]));
+        else if (a == "--effective") s.effective = true;
         else if (a == "--polish" && more) polish_steps = std::atoi(argv[++i]);
         else if (a == "--starts" && more) starts = std::atol(argv[++i]);
         else if (a == "--seed" && more) seed = unsigned(std::atol(argv[++i]));
         else if (a == "--keep" && more) keep = std::atoi(argv[++i]);
         else {
             std::fprintf(stderr, "usage: derive_nystrom [--order 8] [--kicks 17] [--shape aba|bab] [--processor M] "
-                                 "[--polish N] [--starts N] [--seed S] [--keep K]\n");
+                                 "[--effective] [--polish N] [--starts N] [--seed S] [--keep K]\n");
             return 2;
         }
     }
@@ -269,6 +298,28 @@ int main(int argc, char** argv) {
             if (!(residual < 1e-11L)) continue;
         }
         const coefficient error = leading_error(s, x, order);
+        if (s.effective && s.processor_pairs > 0) {  // the processor for this kernel, solved alone
+            shape full = s;
+            full.effective = false;
+            const vector kernel_x = x;
+            const auto conjugated = [&](const vector& p) {
+                vector y(Eigen::Index(full.unknowns()));
+                y << kernel_x, p;
+                return defects(full, y, order);
+            };
+            coefficient best = 1e300L;
+            vector chosen;
+            for (int attempt = 0; attempt < 60 && best > 1e-11L; ++attempt) {
+                vector p(Eigen::Index(full.processor_unknowns()));
+                for (Eigen::Index i = 0; i < p.size(); ++i) p[i] = coefficient(0.2 * normal(random));
+                const coefficient r = solve_for(conjugated, p, 300);
+                if (r < best) best = r, chosen = p;
+            }
+            std::fprintf(stderr, "start %ld: processor residual %.1Le\n", start, best);
+            if (!(best < 1e-11L)) continue;
+            x.conservativeResize(Eigen::Index(full.unknowns()));
+            x.tail(chosen.size()) = chosen;
+        }
         coefficient total = 0;
         for (const substep& o : s.kernel(x)) total += std::fabs(o.weight);
         solutions.push_back({x, residual, error, coefficient(s.forces()) * std::pow(error, 1.0L / order), total});
@@ -297,8 +348,10 @@ int main(int argc, char** argv) {
         list("kick  ", kick);
         list("drift ", drift);
         if (s.processor_pairs > 0) {  // in order of application, pairs (drift, kick)
+            shape full = s;
+            full.effective = false;
             std::vector<coefficient> pd, pk;
-            for (const substep& o : s.processor(f.x)) (o.kind == substep::kick ? pk : pd).push_back(o.weight);
+            for (const substep& o : full.processor(f.x)) (o.kind == substep::kick ? pk : pd).push_back(o.weight);
             list("processor drift ", pd);
             list("processor kick  ", pk);
         }

@@ -10,25 +10,6 @@
 
 using namespace sympl;
 
-namespace {
-// Rank of the degree-k part of a set of series' words: the dimension they span.
-std::size_t rank_of(const std::vector<std::vector<coefficient>>& vectors) {
-    return detail::orthonormal_basis(vectors).size();
-}
-
-// All right-nested brackets [x1,[x2,..,xk]] of single letters: they span the
-// degree-k part of the free Lie algebra on two letters.
-std::vector<std::vector<coefficient>> lie_words(int degree) {
-    std::vector<std::vector<coefficient>> out;
-    for (std::size_t bits = 0; bits < (std::size_t(1) << degree); ++bits) {
-        std::vector<coefficient> w = detail::letter(bits & 1);
-        for (int i = 1; i < degree; ++i) w = detail::bracket(detail::letter((bits >> i) & 1), 1, w, i);
-        out.push_back(w);
-    }
-    return out;
-}
-}  // namespace
-
 TEST_CASE("order_conditions: the free Lie algebra and the Nystrom ideal have the known dimensions") {
     // Witt's formula gives 2, 1, 2, 3, 6, 9, 18 for the free Lie algebra on two
     // letters; the RKN conditions number 2, 1, 2, 2, 4, 5, 10 (Blanes & Moan
@@ -36,7 +17,7 @@ TEST_CASE("order_conditions: the free Lie algebra and the Nystrom ideal have the
     const std::size_t lie[] = {2, 1, 2, 3, 6, 9, 18}, nystrom[] = {2, 1, 2, 2, 4, 5, 10};
     for (int k = 1; k <= 7; ++k) {
         CAPTURE(k);
-        const std::size_t l = rank_of(lie_words(k)), ideal = detail::nystrom_ideal(k).size();
+        const std::size_t l = detail::lie_basis(k).size(), ideal = detail::nystrom_ideal(k).size();
         CHECK(l == lie[k - 1]);
         CHECK(l - ideal == nystrom[k - 1]);
     }
@@ -109,4 +90,29 @@ TEST_CASE("order_conditions: bad degrees are refused with the value") {
     const word_series field = modified_field({{substep::drift, 1}}, 3);
     CHECK_THROWS_WITH_AS(condition_residual(field, 4, kinetic_requirement::any), doctest::Contains("degree 4"),
                          invalid_argument);
+}
+
+TEST_CASE("order_conditions: a processed method's kernel has exactly its effective order, its plain order 4") {
+    // The effective conditions know nothing of the processor: they must find,
+    // from the kernel alone, the order the catalog claims for kernel + processor
+    // (measured with the processor in test_processing.cpp), and no more.
+    for (const processed_method& m : processed_catalog()) {
+        CAPTURE(m.name);
+        const std::vector<substep> ops = m.kernel.substeps();
+        const int top = m.order + 1;
+        CHECK(effective_order(ops, top, kinetic_requirement::any) == m.order);
+        CHECK(effective_order(ops, top, kinetic_requirement::quadratic) == m.order);
+        CHECK(algebraic_order(m.kernel, top, kinetic_requirement::any) == 4);
+        // The first unmet effective condition is at an odd degree (the kernel is
+        // symmetric) and is not rounding: far above the 1e-13 tolerance.
+        const auto defects = effective_condition_defects(ops, top, kinetic_requirement::any);
+        coefficient leading = 0;
+        for (coefficient c : defects[std::size_t(top - 1)]) leading += c * c;
+        CHECK(std::sqrt(leading) > 1e-8L);
+    }
+    // A plain table is its own kernel: symmetric order 4 tables have effective
+    // order 4 or more, never less, and leapfrog (order 2) stays at 2: no
+    // processor removes the degree-3 error [T,[T,V]] - [V,[V,T]]/2 it leaves.
+    CHECK(effective_order(method("yoshida_4").substeps(), 5, kinetic_requirement::any) >= 4);
+    CHECK(effective_order(method("leapfrog_kdk").substeps(), 5, kinetic_requirement::any) == 2);
 }

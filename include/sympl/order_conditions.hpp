@@ -75,25 +75,38 @@ inline std::vector<coefficient> bracket(const std::vector<coefficient>& u, int d
 inline std::vector<coefficient> letter(bool kick) { return kick ? std::vector<coefficient>{0, 1} : std::vector<coefficient>{1, 0}; }
 
 // An orthonormal basis (modified Gram-Schmidt, twice) of the span of `vectors`.
-inline std::vector<std::vector<coefficient>> orthonormal_basis(const std::vector<std::vector<coefficient>>& vectors) {
-    std::vector<std::vector<coefficient>> basis;
-    for (std::vector<coefficient> v : vectors) {
+// With `carried` (one vector per input, empty meaning zero), the same linear
+// combinations are applied to it, and on return it holds, for each basis
+// vector, the combination of the carried vectors that goes with it.
+inline std::vector<std::vector<coefficient>> orthonormal_basis(const std::vector<std::vector<coefficient>>& vectors,
+                                                               std::vector<std::vector<coefficient>>* carried = nullptr) {
+    std::vector<std::vector<coefficient>> basis, basis_carried;
+    for (std::size_t j = 0; j < vectors.size(); ++j) {
+        std::vector<coefficient> v = vectors[j], with = carried ? (*carried)[j] : std::vector<coefficient>{};
         coefficient before = 0;
         for (coefficient x : v) before += x * x;
         if (before == 0) continue;
         for (int pass = 0; pass < 2; ++pass)
-            for (const auto& e : basis) {
+            for (std::size_t b = 0; b < basis.size(); ++b) {
+                const auto& e = basis[b];
                 coefficient dot = 0;
                 for (std::size_t i = 0; i < v.size(); ++i) dot += e[i] * v[i];
                 for (std::size_t i = 0; i < v.size(); ++i) v[i] -= dot * e[i];
+                if (carried && !basis_carried[b].empty()) {
+                    if (with.empty()) with.assign(basis_carried[b].size(), 0);
+                    for (std::size_t i = 0; i < with.size(); ++i) with[i] -= dot * basis_carried[b][i];
+                }
             }
         coefficient after = 0;
         for (coefficient x : v) after += x * x;
         if (after <= 1e-24L * before) continue;  // dependent on the earlier ones
         const coefficient norm = std::sqrt(after);
         for (coefficient& x : v) x /= norm;
+        for (coefficient& x : with) x /= norm;
         basis.push_back(std::move(v));
+        basis_carried.push_back(std::move(with));
     }
+    if (carried) *carried = std::move(basis_carried);
     return basis;
 }
 
@@ -119,6 +132,24 @@ inline const std::vector<std::vector<coefficient>>& nystrom_ideal(int degree) {
         spanning = std::move(level);
     }
     return cache.emplace(degree, orthonormal_basis(spanning)).first->second;
+}
+
+// An orthonormal basis of the degree-k part of the free Lie algebra on the two
+// letters, from the right-nested brackets [x1,[x2,..,xk]] of every word (they
+// span it). Cached per degree.
+inline const std::vector<std::vector<coefficient>>& lie_basis(int degree) {
+    static std::mutex guard;
+    static std::map<int, std::vector<std::vector<coefficient>>> cache;
+    const std::lock_guard<std::mutex> lock(guard);
+    auto found = cache.find(degree);
+    if (found != cache.end()) return found->second;
+    std::vector<std::vector<coefficient>> brackets;
+    for (std::size_t bits = 0; bits < (std::size_t(1) << degree); ++bits) {
+        std::vector<coefficient> w = letter(bits & 1);
+        for (int i = 1; i < degree; ++i) w = bracket(letter((bits >> i) & 1), 1, w, i);
+        brackets.push_back(std::move(w));
+    }
+    return cache.emplace(degree, orthonormal_basis(brackets)).first->second;
 }
 }  // namespace detail
 
@@ -247,6 +278,73 @@ inline int algebraic_order(const table& t, int max_degree, kinetic_requirement k
     return algebraic_order(modified_field(t.substeps(), max_degree), kinetic, tolerance);
 }
 inline int algebraic_order(const table& t, int max_degree) { return algebraic_order(t, max_degree, t.requirement()); }
+
+// The effective order of a kernel K: the order of P K P^-1 for the best
+// near-identity processor P = exp(Z), Z = Z_2 + Z_3 + ... (Blanes, Casas & Ros
+// 1999, SIAM J. Sci. Comput. 21, 711). Conjugation turns the modified field X
+// into e^(ad Z) X, and Z_(k-1) first enters degree k as [Z_(k-1), T + V]; so,
+// degree by degree, Z_(k-1) is chosen to cancel what it can of e^(ad Z) X at
+// degree k (least squares), and what is left is that degree's effective
+// defect (for quadratic T, also modulo the ideal of [V,[V,[V,T]]]). Returns
+// the defects of degrees 1 .. max_degree as word coefficients (index 0 for
+// degree 1). All vanish to rounding through degree p when P K^n P^-1 has
+// order p for some processor; which processor is another question (one with
+// log P = Z through degree p - 1 will do).
+inline std::vector<std::vector<coefficient>> effective_condition_defects(const std::vector<substep>& kernel,
+                                                                         int max_degree, kinetic_requirement kinetic) {
+    const word_series x = modified_field(kernel, max_degree);
+    word_series z(max_degree);  // the processor's exponent, built degree by degree
+    std::vector<std::vector<coefficient>> defects;
+    for (int k = 1; k <= max_degree; ++k) {
+        // e^(ad Z) X at degree k: Z starts at degree 2, so ad_Z^n X starts at 2n + 1.
+        std::vector<coefficient> r = x.part[std::size_t(k)];
+        if (k == 1) r[0] -= 1, r[1] -= 1;
+        word_series zk(k), term(k);
+        for (int d = 0; d <= k; ++d) zk.part[std::size_t(d)] = z.part[std::size_t(d)], term.part[std::size_t(d)] = x.part[std::size_t(d)];
+        for (int n = 1; 2 * n + 1 <= k; ++n) {
+            const word_series zt = zk * term, tz = term * zk;
+            for (int d = 0; d <= k; ++d)
+                for (std::size_t i = 0; i < term.part[std::size_t(d)].size(); ++i)
+                    term.part[std::size_t(d)][i] = (zt.part[std::size_t(d)][i] - tz.part[std::size_t(d)][i]) / coefficient(n);
+            for (std::size_t i = 0; i < r.size(); ++i) r[i] += term.part[std::size_t(k)][i];
+        }
+        // What can be cancelled at degree k: the ideal (quadratic T), then
+        // [e, T + V] for e in a basis of degree k - 1 >= 2. Orthonormalized
+        // with the Lie element each image comes from carried along, so that
+        // the projection onto an image also says how much to add to Z.
+        std::vector<std::vector<coefficient>> image, source;
+        if (kinetic == kinetic_requirement::quadratic)
+            for (const auto& e : detail::nystrom_ideal(k)) image.push_back(e), source.emplace_back();
+        if (k >= 3)
+            for (const auto& e : detail::lie_basis(k - 1))
+                image.push_back(detail::bracket(e, k - 1, {1, 1}, 1)), source.push_back(e);
+        std::vector<std::vector<coefficient>> basis_source = source;
+        const std::vector<std::vector<coefficient>> basis = detail::orthonormal_basis(image, &basis_source);
+        for (std::size_t b = 0; b < basis.size(); ++b) {
+            coefficient dot = 0;
+            for (std::size_t i = 0; i < r.size(); ++i) dot += basis[b][i] * r[i];
+            for (std::size_t i = 0; i < r.size(); ++i) r[i] -= dot * basis[b][i];
+            for (std::size_t i = 0; i < basis_source[b].size(); ++i) z.part[std::size_t(k - 1)][i] -= dot * basis_source[b][i];
+        }
+        defects.push_back(std::move(r));
+    }
+    return defects;
+}
+
+// The largest p <= max_degree whose effective defects of degrees 1 .. p are
+// all below `tolerance` in norm.
+inline int effective_order(const std::vector<substep>& kernel, int max_degree, kinetic_requirement kinetic,
+                           coefficient tolerance = 1e-13L) {
+    const auto defects = effective_condition_defects(kernel, max_degree, kinetic);
+    int p = 0;
+    for (const auto& d : defects) {
+        coefficient sum = 0;
+        for (coefficient c : d) sum += c * c;
+        if (!(std::sqrt(sum) < tolerance)) break;
+        ++p;
+    }
+    return p;
+}
 
 // Everything the conditions say about a table, from one series: its order in
 // general and for quadratic kinetic energy, and the size of the first
