@@ -57,10 +57,18 @@ struct shape {
     std::size_t processor_pairs = 0;
     bool effective = false;  // kernel alone, effective-order conditions; the processor solved after
     std::size_t operations() const { return kick_first ? 2 * kicks - 1 : 2 * kicks + 1; }
-    std::size_t kernel_unknowns() const { return (operations() + 1) / 2; }
+    // Force-gradient coefficients (table.hpp): on no kick, on every kick, or on
+    // the centre kick only (odd kick counts).
+    enum { none, every_kick, centre_kick } gradient = none;
+    std::size_t weight_unknowns() const { return (operations() + 1) / 2; }
+    // The kicks of the first half (with the centre): one gradient coefficient each.
+    std::size_t gradient_unknowns() const { return gradient == every_kick ? (kicks + 1) / 2 : gradient == centre_kick; }
+    std::size_t kernel_unknowns() const { return weight_unknowns() + gradient_unknowns(); }
     std::size_t processor_unknowns() const { return processor_pairs > 0 ? 2 * processor_pairs - 2 : 0; }
     std::size_t unknowns() const { return kernel_unknowns() + (effective ? 0 : processor_unknowns()); }
     std::size_t forces() const { return kick_first ? kicks - 1 : kicks; }
+    // What a step costs, counting a force's derivative J_F u as one force.
+    std::size_t cost() const { return forces() + (gradient == every_kick ? forces() : gradient == centre_kick); }
 
     // The kernel: the symmetric sequence whose first half leads x.
     std::vector<substep> kernel(const vector& x) const {
@@ -70,6 +78,8 @@ struct shape {
             const std::size_t j = std::min(i, n - 1 - i);
             const bool kick = (i % 2 == 0) == kick_first;
             ops[i] = {kick ? substep::kick : substep::drift, x[Eigen::Index(j)]};
+            if (kick && gradient == every_kick) ops[i].gradient = x[Eigen::Index(weight_unknowns() + j / 2)];
+            if (kick && gradient == centre_kick && j == (n - 1) / 2) ops[i].gradient = x[Eigen::Index(weight_unknowns())];
         }
         return ops;
     }
@@ -198,7 +208,7 @@ coefficient solve(const shape& s, vector& x, int order, int iterations = 200) {
 // error's gradient projected onto the null space of the defects' Jacobian,
 // a step that halves until the root, restored by solve(), has a smaller
 // error. Returns the number of accepted steps.
-int polish(const shape& s, vector& x, int order, int steps) {
+int polish(const shape& s, vector& x, int order, int steps, coefficient accept) {
     coefficient error = leading_error(s, x, order), length = 0.05L;
     int accepted = 0;
     for (int k = 0; k < steps && length > 1e-9L; ++k) {
@@ -220,7 +230,7 @@ int polish(const shape& s, vector& x, int order, int steps) {
         bool better = false;
         while (!better && length > 1e-9L) {
             vector trial = x - length * along / along.norm();
-            if (solve(s, trial, order, 30) < 1e-13L) {
+            if (solve(s, trial, order, 30) < accept) {
                 const coefficient e = leading_error(s, trial, order);
                 if (e < error) x = trial, error = e, better = true, ++accepted, length *= 1.5L;
             }
@@ -238,7 +248,10 @@ struct found {
 }  // namespace
 
 int main(int argc, char** argv) {
-    int order = 8, keep = 5, polish_steps = 0;
+    int order = 8, keep = 5, polish_steps = 0, from_order = 0;
+    // A root is accepted below this scaled residual; with many kicks the
+    // scaling (kicks^(k-1)) lifts long double's rounding towards 1e-10.
+    coefficient accept = 1e-11L;
     long starts = 2000;
     unsigned seed = 1;
     shape s{17, false};
@@ -250,20 +263,27 @@ int main(int argc, char** argv) {
         else if (a == "--shape" && more) s.kick_first = std::string(argv[++i]) == "bab";
         else if (a == "--processor" && more) s.processor_pairs = std::size_t(std::atol(argv[++i]));
         else if (a == "--effective") s.effective = true;
+        else if (a == "--from" && more) from_order = std::atoi(argv[++i]);
+        else if (a == "--accept" && more) accept = std::strtold(argv[++i], nullptr);
+        else if (a == "--gradient" && more) {
+            const std::string g = argv[++i];
+            s.gradient = g == "every" ? shape::every_kick : g == "centre" ? shape::centre_kick : shape::none;
+        }
         else if (a == "--polish" && more) polish_steps = std::atoi(argv[++i]);
         else if (a == "--starts" && more) starts = std::atol(argv[++i]);
         else if (a == "--seed" && more) seed = unsigned(std::atol(argv[++i]));
         else if (a == "--keep" && more) keep = std::atoi(argv[++i]);
         else {
             std::fprintf(stderr, "usage: derive_nystrom [--order 8] [--kicks 17] [--shape aba|bab] [--processor M] "
-                                 "[--effective] [--polish N] [--starts N] [--seed S] [--keep K]\n");
+                                 "[--effective] [--gradient every|centre] [--accept 1e-11] [--from P] [--polish N] [--starts N] [--seed S] [--keep K]\n");
             return 2;
         }
     }
     if (order < 2 || order > 10 || order % 2 || s.kicks < 2 || s.kicks > 40 || s.processor_pairs > 40 ||
-        polish_steps < 0 || polish_steps > 100000 || starts < 1 || keep < 1) {
-        std::fprintf(stderr, "derive_nystrom: expected an even order in 2 .. 10, 2 .. 40 kicks, at most 40 processor "
-                             "pairs, 0 .. 100000 polish steps, starts and keep >= 1\n");
+        (s.gradient == shape::centre_kick && s.kicks % 2 == 0) || polish_steps < 0 || polish_steps > 100000 ||
+        starts < 1 || keep < 1) {
+        std::fprintf(stderr, "derive_nystrom: expected an even order in 2 .. 10, 2 .. 40 kicks (odd with --gradient "
+                             "centre), at most 40 processor pairs, 0 .. 100000 polish steps, starts and keep >= 1\n");
         return 2;
     }
     std::mt19937_64 random(seed);
@@ -278,24 +298,35 @@ int main(int argc, char** argv) {
                 x[i] = coefficient(0.2 * normal(random));
                 continue;
             }
+            if (i >= Eigen::Index(s.weight_unknowns())) {  // a gradient: of the size of a kick's cube
+                x[i] = coefficient(0.05 * normal(random) / std::pow(double(s.kicks), 3));
+                continue;
+            }
             const bool kick = (i % 2 == 0) == s.kick_first;
             const double share = kick ? 1.0 / double(s.kicks) : 1.0 / double(s.operations() - s.kicks);
             x[i] = coefficient(share * (1 + 1.5 * normal(random)));
         }
-        coefficient residual = solve(s, x, order);
+        // With --from P: a root of order P first (many more of those), then
+        // its family walked down the error at degree P + 1 (--polish) before
+        // the conditions of the full order are solved from there.
+        if (from_order > 0) {
+            if (!(solve(s, x, from_order) < accept)) continue;
+            if (polish_steps > 0) polish(s, x, from_order, polish_steps, accept);
+        }
+        coefficient residual = solve(s, x, order, 400);
         if ((start + 1) % 100 == 0) std::fprintf(stderr, "%ld starts, %ld converged\n", start + 1, converged);
-        if (!(residual < 1e-11L)) {
+        if (!(residual < accept)) {
             if (std::getenv("DERIVE_VERBOSE")) std::fprintf(stderr, "start %ld: stopped at residual %.2Le, max |w| %.2Lf\n", start, residual, x.cwiseAbs().maxCoeff());
             continue;
         }
         ++converged;
-        if (polish_steps > 0) {
+        if (polish_steps > 0 && from_order == 0) {
             const coefficient before = leading_error(s, x, order);
-            const int accepted = polish(s, x, order, polish_steps);
+            const int accepted = polish(s, x, order, polish_steps, accept);
             residual = solve(s, x, order);
             std::fprintf(stderr, "start %ld: polished %d steps, error %.3Le -> %.3Le\n", start, accepted, before,
                          leading_error(s, x, order));
-            if (!(residual < 1e-11L)) continue;
+            if (!(residual < accept)) continue;
         }
         const coefficient error = leading_error(s, x, order);
         if (s.effective && s.processor_pairs > 0) {  // the processor for this kernel, solved alone
@@ -322,7 +353,7 @@ int main(int argc, char** argv) {
         }
         coefficient total = 0;
         for (const substep& o : s.kernel(x)) total += std::fabs(o.weight);
-        solutions.push_back({x, residual, error, coefficient(s.forces()) * std::pow(error, 1.0L / order), total});
+        solutions.push_back({x, residual, error, coefficient(s.cost()) * std::pow(error, 1.0L / order), total});
         std::fprintf(stderr, "start %ld: residual %.1Le, error %.3Le, effective %.4Lf, sum |w| %.3Lf\n", start, residual,
                      error, solutions.back().effective, total);
     }
@@ -338,8 +369,11 @@ int main(int argc, char** argv) {
         const found& f = solutions[std::size_t(k)];
         std::printf("# error %.4Le, effective error %.4Lf, sum |w| %.4Lf, residual %.1Le\n", f.error, f.effective, f.total,
                     f.residual);
-        std::vector<coefficient> kick, drift;
-        for (const substep& o : s.kernel(f.x)) (o.kind == substep::kick ? kick : drift).push_back(o.weight);
+        std::vector<coefficient> kick, drift, gradient;
+        for (const substep& o : s.kernel(f.x)) {
+            (o.kind == substep::kick ? kick : drift).push_back(o.weight);
+            if (o.kind == substep::kick) gradient.push_back(o.gradient);
+        }
         const auto list = [](const char* label, const std::vector<coefficient>& w) {
             std::printf("%s{", label);
             for (std::size_t i = 0; i < w.size(); ++i) std::printf("%s%.21LgL", i ? ", " : "", w[i]);
@@ -347,6 +381,7 @@ int main(int argc, char** argv) {
         };
         list("kick  ", kick);
         list("drift ", drift);
+        if (s.gradient != shape::none) list("gradient ", gradient);
         if (s.processor_pairs > 0) {  // in order of application, pairs (drift, kick)
             shape full = s;
             full.effective = false;

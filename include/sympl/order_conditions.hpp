@@ -151,33 +151,69 @@ inline const std::vector<std::vector<coefficient>>& lie_basis(int degree) {
     }
     return cache.emplace(degree, orthonormal_basis(brackets)).first->second;
 }
+
+// What conjugation can cancel at degree k (effective_condition_defects): the
+// ideal (quadratic T), then [e, T + V] for e in a basis of degree k - 1 >= 2,
+// orthonormalized with the Lie element each image comes from carried along
+// (empty for the ideal's), so that a projection onto an image also says how
+// much to add to the processor's exponent. Cached per degree and kinetic energy.
+inline const std::pair<std::vector<std::vector<coefficient>>, std::vector<std::vector<coefficient>>>& cancellable(
+    int degree, kinetic_requirement kinetic) {
+    static std::mutex guard;
+    static std::map<std::pair<int, kinetic_requirement>,
+                    std::pair<std::vector<std::vector<coefficient>>, std::vector<std::vector<coefficient>>>>
+        cache;
+    {
+        const std::lock_guard<std::mutex> lock(guard);
+        auto found = cache.find({degree, kinetic});
+        if (found != cache.end()) return found->second;
+    }
+    std::vector<std::vector<coefficient>> image, source;
+    if (kinetic == kinetic_requirement::quadratic)
+        for (const auto& e : nystrom_ideal(degree)) image.push_back(e), source.emplace_back();
+    if (degree >= 3)
+        for (const auto& e : lie_basis(degree - 1))
+            image.push_back(bracket(e, degree - 1, {1, 1}, 1)), source.push_back(e);
+    auto basis = orthonormal_basis(image, &source);
+    const std::lock_guard<std::mutex> lock(guard);
+    return cache.emplace(std::make_pair(degree, kinetic), std::make_pair(std::move(basis), std::move(source)))
+        .first->second;
+}
 }  // namespace detail
 
 // Truncated product: (x y) up to the smaller of the two degrees.
 inline word_series operator*(const word_series& x, const word_series& y) {
     const int d = std::min(x.max_degree(), y.max_degree());
     word_series out(d);
-    for (int i = 0; i <= d; ++i)
-        for (int j = 0; i + j <= d; ++j) {
+    std::vector<std::size_t> nonzero;  // y's words with a coefficient, per degree: y is often sparse
+    for (int j = 0; j <= d; ++j) {
+        const auto& v = y.part[std::size_t(j)];
+        nonzero.clear();
+        for (std::size_t b = 0; b < v.size(); ++b)
+            if (v[b] != 0) nonzero.push_back(b);
+        if (nonzero.empty()) continue;
+        for (int i = 0; i + j <= d; ++i) {
             const auto& u = x.part[std::size_t(i)];
-            const auto& v = y.part[std::size_t(j)];
             auto& w = out.part[std::size_t(i + j)];
             for (std::size_t a = 0; a < u.size(); ++a) {
                 if (u[a] == 0) continue;
-                for (std::size_t b = 0; b < v.size(); ++b) w[(a << j) | b] += u[a] * v[b];
+                for (std::size_t b : nonzero) w[(a << j) | b] += u[a] * v[b];
             }
         }
+    }
     return out;
 }
 
 // exp(s) for a series without constant term.
 inline word_series exp_of(const word_series& s) {
     word_series out = word_series::identity(s.max_degree()), power = out;
+    coefficient factorial = 1;
     for (int n = 1; n <= s.max_degree(); ++n) {
         power = power * s;
+        factorial *= n;
         for (int k = 0; k <= s.max_degree(); ++k)
             for (std::size_t w = 0; w < power.part[std::size_t(k)].size(); ++w)
-                out.part[std::size_t(k)][w] += power.part[std::size_t(k)][w] / std::tgamma(coefficient(n + 1));
+                out.part[std::size_t(k)][w] += power.part[std::size_t(k)][w] / factorial;
     }
     return out;
 }
@@ -308,18 +344,7 @@ inline std::vector<std::vector<coefficient>> effective_condition_defects(const s
                     term.part[std::size_t(d)][i] = (zt.part[std::size_t(d)][i] - tz.part[std::size_t(d)][i]) / coefficient(n);
             for (std::size_t i = 0; i < r.size(); ++i) r[i] += term.part[std::size_t(k)][i];
         }
-        // What can be cancelled at degree k: the ideal (quadratic T), then
-        // [e, T + V] for e in a basis of degree k - 1 >= 2. Orthonormalized
-        // with the Lie element each image comes from carried along, so that
-        // the projection onto an image also says how much to add to Z.
-        std::vector<std::vector<coefficient>> image, source;
-        if (kinetic == kinetic_requirement::quadratic)
-            for (const auto& e : detail::nystrom_ideal(k)) image.push_back(e), source.emplace_back();
-        if (k >= 3)
-            for (const auto& e : detail::lie_basis(k - 1))
-                image.push_back(detail::bracket(e, k - 1, {1, 1}, 1)), source.push_back(e);
-        std::vector<std::vector<coefficient>> basis_source = source;
-        const std::vector<std::vector<coefficient>> basis = detail::orthonormal_basis(image, &basis_source);
+        const auto& [basis, basis_source] = detail::cancellable(k, kinetic);
         for (std::size_t b = 0; b < basis.size(); ++b) {
             coefficient dot = 0;
             for (std::size_t i = 0; i < r.size(); ++i) dot += basis[b][i] * r[i];
