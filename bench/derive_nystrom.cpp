@@ -248,7 +248,7 @@ struct found {
 }  // namespace
 
 int main(int argc, char** argv) {
-    int order = 8, keep = 5, polish_steps = 0, from_order = 0;
+    int order = 8, keep = 5, polish_steps = 0, from_order = 0, processor_attempts = 60;
     // A root is accepted below this scaled residual; with many kicks the
     // scaling (kicks^(k-1)) lifts long double's rounding towards 1e-10.
     coefficient accept = 1e-11L;
@@ -264,6 +264,7 @@ int main(int argc, char** argv) {
         else if (a == "--processor" && more) s.processor_pairs = std::size_t(std::atol(argv[++i]));
         else if (a == "--effective") s.effective = true;
         else if (a == "--from" && more) from_order = std::atoi(argv[++i]);
+        else if (a == "--processor-starts" && more) processor_attempts = std::atoi(argv[++i]);
         else if (a == "--accept" && more) accept = std::strtold(argv[++i], nullptr);
         else if (a == "--gradient" && more) {
             const std::string g = argv[++i];
@@ -275,7 +276,7 @@ int main(int argc, char** argv) {
         else if (a == "--keep" && more) keep = std::atoi(argv[++i]);
         else {
             std::fprintf(stderr, "usage: derive_nystrom [--order 8] [--kicks 17] [--shape aba|bab] [--processor M] "
-                                 "[--effective] [--gradient every|centre] [--accept 1e-11] [--from P] [--polish N] [--starts N] [--seed S] [--keep K]\n");
+                                 "[--effective] [--gradient every|centre] [--accept 1e-11] [--from P] [--processor-starts 60] [--polish N] [--starts N] [--seed S] [--keep K]\n");
             return 2;
         }
     }
@@ -340,14 +341,15 @@ int main(int argc, char** argv) {
             };
             coefficient best = 1e300L;
             vector chosen;
-            for (int attempt = 0; attempt < 60 && best > 1e-11L; ++attempt) {
+            for (int attempt = 0; attempt < processor_attempts && best > accept; ++attempt) {
                 vector p(Eigen::Index(full.processor_unknowns()));
-                for (Eigen::Index i = 0; i < p.size(); ++i) p[i] = coefficient(0.2 * normal(random));
+                const double spread = 0.1 * double(1 << (attempt % 3));  // 0.1, 0.2, 0.4 in turn
+                for (Eigen::Index i = 0; i < p.size(); ++i) p[i] = coefficient(spread * normal(random));
                 const coefficient r = solve_for(conjugated, p, 300);
                 if (r < best) best = r, chosen = p;
             }
             std::fprintf(stderr, "start %ld: processor residual %.1Le\n", start, best);
-            if (!(best < 1e-11L)) continue;
+            if (!(best < accept)) continue;
             x.conservativeResize(Eigen::Index(full.unknowns()));
             x.tail(chosen.size()) = chosen;
         }
