@@ -93,7 +93,8 @@ std::vector<contender> contenders(const problem<H, X, Y>& pr) {
         };
     };
     for (const char* t : {"blanes_moan_s6", "blanes_moan_s10", "blanes_moan_srkn11b", "blanes_moan_srkn14a",
-                          "okunbor_skeel_6", "kahan_li_8", "suzuki_umeno_8", "sofroniou_spaletta_10"}) {
+                          "okunbor_skeel_6", "blanes_casas_escorihuela_a18", "blanes_casas_escorihuela_b17",
+                          "blanes_casas_escorihuela_b19", "kahan_li_8", "suzuki_umeno_8", "sofroniou_spaletta_10"}) {
         const sympl::table m = sympl::method(t);
         all.push_back({t, false, 2.0, 1e-4, sympl_run([&pr, m] { return sympl::make_stepper<X>(pr.h, m); })});
     }
