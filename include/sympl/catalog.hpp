@@ -226,7 +226,7 @@ inline std::vector<table> near_integrable_methods() {
 inline std::vector<table> order_5_and_6_methods() {
     const std::string bm = "Blanes & Moan 2002, J. Comput. Appl. Math. 142, 313, ";
     const std::string bce = "Blanes, Casas & Escorihuela-Tomas 2022, Runge-Kutta-Nystrom symplectic splitting methods "
-                            "of order 8, Appl. Numer. Math. 182, 14 (arXiv:2202.01541), ";
+                            "of order 8, Appl. Numer. Math. (arXiv:2202.01541), ";
     // Yoshida's tables print 15 digits; these 21 are the roots of his eqs.
     // 5.4-5.17 (re-solved in the Principia project's methods table), which
     // agree with the printed ones to their last digit or two.
@@ -255,7 +255,7 @@ inline std::vector<table> order_5_and_6_methods() {
                     -0.0087942431285105800L},
                    6, bm + "Table 3 (SRKN14a)", rkn),
         // Order-8 RKN methods (quadratic T). The paper names drift weights a and
-        // kick weights b (f_a = (v, 0), f_b = (0, g)); sources that copy its
+        // kick weights b (its eq. 1.2: f_a = (v, 0), f_b = (0, g)); sources that copy its
         // tables disagree, and read the other way round each measures order 4
         // (tests/test_catalog.cpp). Its 30-digit values, first half by role:
         palindrome("blanes_casas_escorihuela_a18", drift_first,
