@@ -208,8 +208,8 @@ TEST_CASE("catalog: composition weights match the published centre weight") {
 }
 
 TEST_CASE("catalog: Blanes, Casas & Escorihuela's order-8 tables read with kick and drift swapped measure 4") {
-    // Copies of these tables put the paper's a (drift) weights on the kicks;
-    // read that way each is an order-4 method, which is what they then report.
+    // Some public copies of these tables put the paper's a (drift) weights on
+    // the kicks; read that way each is an order-4 method.
     for (const char* name : {"blanes_casas_escorihuela_a18", "blanes_casas_escorihuela_b17",
                              "blanes_casas_escorihuela_b19"}) {
         CAPTURE(name);
