@@ -21,7 +21,13 @@
 // (the defects' null space, where there are more unknowns than conditions)
 // to lower its leading error, projected back onto the roots after each step.
 //
-//   derive_nystrom [--order 8] [--kicks 17] [--shape aba|bab] [--processor M] [--effective] [--polish N]
+// --gradient every|centre gives every kick (or the centre kick) a
+// force-gradient coefficient as one more unknown; --from P solves order P
+// first and the full order from there; --accept sets the scaled residual
+// below which a root counts (1e-11; ~1e-8 with 14 kicks or more).
+//
+//   derive_nystrom [--order 8] [--kicks 17] [--shape aba|bab] [--processor M] [--effective]
+//                  [--gradient every|centre] [--accept 1e-11] [--from P] [--processor-starts 60] [--polish N]
 //                  [--starts 2000] [--seed 1] [--keep 5]
 // aba: drift first and last (a step costs `kicks` forces); bab: kick first and
 // last (the last kick joins the next step's first: `kicks` - 1 forces).
@@ -266,10 +272,8 @@ int main(int argc, char** argv) {
         else if (a == "--from" && more) from_order = std::atoi(argv[++i]);
         else if (a == "--processor-starts" && more) processor_attempts = std::atoi(argv[++i]);
         else if (a == "--accept" && more) accept = std::strtold(argv[++i], nullptr);
-        else if (a == "--gradient" && more) {
-            const std::string g = argv[++i];
-            s.gradient = g == "every" ? shape::every_kick : g == "centre" ? shape::centre_kick : shape::none;
-        }
+        else if (a == "--gradient" && more && (std::string(argv[i + 1]) == "every" || std::string(argv[i + 1]) == "centre"))
+            s.gradient = std::string(argv[++i]) == "every" ? shape::every_kick : shape::centre_kick;
         else if (a == "--polish" && more) polish_steps = std::atoi(argv[++i]);
         else if (a == "--starts" && more) starts = std::atol(argv[++i]);
         else if (a == "--seed" && more) seed = unsigned(std::atol(argv[++i]));
