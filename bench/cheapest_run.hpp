@@ -2,31 +2,20 @@
 // What the time-to-accuracy benchmarks share: finding the cheapest setting
 // that meets an accuracy target, and timing a run.
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <functional>
 #include <optional>
 #include <vector>
 
+#include "timing.hpp"
+
 namespace sympl::bench {
 
 // Median over `repeats` of the time per call of f, each repeat calling f
-// until at least `least` seconds have passed.
+// until at least `least` seconds have passed: the program's one timing
+// procedure (src/timing.hpp).
 inline double seconds_of(const std::function<void()>& f, int repeats, double least = 0.02) {
-    std::vector<double> t;
-    for (int r = 0; r < repeats; ++r) {
-        int n = 0;
-        const auto start = std::chrono::steady_clock::now();
-        double elapsed = 0;
-        do {
-            f();
-            ++n;
-            elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        } while (elapsed < least);
-        t.push_back(elapsed / n);
-    }
-    std::sort(t.begin(), t.end());
-    return t[t.size() / 2];
+    return app::time_per_call(f, repeats, least).median;
 }
 
 // The loosest setting (a step or a tolerance) in [tight, loose] whose error

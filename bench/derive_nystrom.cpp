@@ -46,8 +46,8 @@
 
 #include <Eigen/Dense>
 
-#include <sympl/order_conditions.hpp>
-#include <sympl/processing.hpp>
+#include <sympl/analysis/order_conditions.hpp>
+#include <sympl/methods/processing.hpp>
 
 namespace {
 

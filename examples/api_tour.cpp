@@ -6,7 +6,7 @@
 #include <cstdio>
 
 #include <sympl/sympl.hpp>
-#include <sympl/table_order.hpp>
+#include <sympl/analysis/table_order.hpp>
 #include <sympl/hamiltonians/kepler.hpp>
 
 namespace {

@@ -13,7 +13,7 @@
 #include <string>
 
 #include <sympl/sympl.hpp>
-#include <sympl/odeint.hpp>
+#include <sympl/interop/odeint.hpp>
 #include <sympl/hamiltonians/pendulum.hpp>
 
 using State = sympl::phase_space<double, 1>;

@@ -7,7 +7,7 @@
 // and critically damped, undamped, and undamped at resonance.
 #include <cmath>
 
-#include <sympl/phase_space.hpp>
+#include <sympl/core/phase_space.hpp>
 
 namespace sympl::hamiltonians {
 

@@ -5,6 +5,8 @@
 // Jacobi elliptic functions; sympl uses numerical references for it.
 #include <cmath>
 
+#include <Eigen/Core>
+
 namespace sympl::hamiltonians {
 
 struct double_well {

@@ -4,6 +4,8 @@
 //     H = |p|^2/2 + sum_{i=0}^{N} [ r_i^2/2 + beta r_i^4/4 ],  r_i = q_{i+1} - q_i.
 #include <cmath>
 
+#include <Eigen/Core>
+
 namespace sympl::hamiltonians {
 
 struct fpu_beta {

@@ -3,7 +3,7 @@
 // Sandvik's test system (Sandvik's lecture notes, "same oscillator as before"), with its exact flow.
 #include <cmath>
 
-#include <sympl/phase_space.hpp>
+#include <sympl/core/phase_space.hpp>
 
 namespace sympl::hamiltonians {
 

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <string>
 
-#include <sympl/error.hpp>
-#include <sympl/phase_space.hpp>
+#include <sympl/core/error.hpp>
+#include <sympl/core/phase_space.hpp>
 
 namespace sympl::hamiltonians {
 

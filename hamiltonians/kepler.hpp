@@ -10,8 +10,8 @@
 
 #include <Eigen/Geometry>
 
-#include <sympl/error.hpp>
-#include <sympl/phase_space.hpp>
+#include <sympl/core/error.hpp>
+#include <sympl/core/phase_space.hpp>
 
 namespace sympl::hamiltonians {
 

@@ -9,7 +9,7 @@
 #include <array>
 #include <cmath>
 
-#include <sympl/phase_space.hpp>
+#include <sympl/core/phase_space.hpp>
 
 namespace sympl::hamiltonians {
 

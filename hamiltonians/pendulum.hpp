@@ -3,7 +3,7 @@
 // The standard nonlinear test with quadratic kinetic energy.
 #include <cmath>
 
-#include <sympl/phase_space.hpp>
+#include <sympl/core/phase_space.hpp>
 
 namespace sympl::hamiltonians {
 

@@ -5,6 +5,8 @@
 // keep their order only for T = p^2/2 (Runge-Kutta-Nystrom methods) lose it here.
 #include <cmath>
 
+#include <Eigen/Core>
+
 namespace sympl::hamiltonians {
 
 struct relativistic_pendulum {

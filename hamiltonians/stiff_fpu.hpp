@@ -8,7 +8,7 @@
 // interval (table::stability_interval(); leapfrog: 2).
 #include <cmath>
 
-#include <sympl/phase_space.hpp>
+#include <sympl/core/phase_space.hpp>
 
 namespace sympl::hamiltonians {
 

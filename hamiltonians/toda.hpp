@@ -5,6 +5,8 @@
 // matrix are conserved; the exact motion is not elementary.
 #include <cmath>
 
+#include <Eigen/Core>
+
 namespace sympl::hamiltonians {
 
 struct toda {

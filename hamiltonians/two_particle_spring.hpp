@@ -6,7 +6,7 @@
 // coordinate q_A - q_B oscillates with omega = sqrt(2k/m) (reduced mass m/2).
 #include <cmath>
 
-#include <sympl/phase_space.hpp>
+#include <sympl/core/phase_space.hpp>
 
 namespace sympl::hamiltonians {
 

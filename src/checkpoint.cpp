@@ -11,7 +11,7 @@
 #include <fstream>
 #include <sstream>
 
-#include <sympl/error.hpp>
+#include <sympl/core/error.hpp>
 
 namespace sympl::app {
 
@@ -84,12 +84,12 @@ void write_checkpoint(const fs::path& file, const checkpoint_record& r) {
     body << "scene " << r.scene_hash << "\nmethod " << r.method.size() << ' ' << r.method << "\ndt " << hex(r.dt)
          << "\nstep " << r.step << '\n';
     put(body, "state", r.state);
-    put(body, "force", r.force);
-    put(body, "velocity", r.velocity);
-    put(body, "q_error", r.q_error);
-    put(body, "p_error", r.p_error);
-    body << "fresh " << r.force_fresh << ' ' << r.velocity_fresh << "\nevaluations " << r.force_evaluations << ' '
-         << r.velocity_evaluations << "\nmax_energy_error " << hex(r.max_energy_error) << "\ntrajectory_bytes "
+    put(body, "force", r.memory.force);
+    put(body, "velocity", r.memory.velocity);
+    put(body, "q_error", r.memory.q_error);
+    put(body, "p_error", r.memory.p_error);
+    body << "fresh " << r.memory.force_fresh << ' ' << r.memory.velocity_fresh << "\nevaluations " << r.memory.force_evaluations << ' '
+         << r.memory.velocity_evaluations << "\nmax_energy_error " << hex(r.max_energy_error) << "\ntrajectory_bytes "
          << r.trajectory_bytes << '\n';
     const std::string text = "sympl-checkpoint " + std::to_string(checkpoint_format) + "\n" + body.str() +
                              "checksum " + fnv1a_hex(body.str()) + "\n";
@@ -162,19 +162,19 @@ checkpoint_record read_checkpoint(const fs::path& file, const std::string& scene
         r.step = b.count(l, "step", UINT64_MAX / 2);
     }
     r.state = b.numbers("state");
-    r.force = b.numbers("force");
-    r.velocity = b.numbers("velocity");
-    r.q_error = b.numbers("q_error");
-    r.p_error = b.numbers("p_error");
+    r.memory.force = b.numbers("force");
+    r.memory.velocity = b.numbers("velocity");
+    r.memory.q_error = b.numbers("q_error");
+    r.memory.p_error = b.numbers("p_error");
     {
         auto l = b.line("fresh");
-        r.force_fresh = b.count(l, "fresh", 1) == 1;
-        r.velocity_fresh = b.count(l, "fresh", 1) == 1;
+        r.memory.force_fresh = b.count(l, "fresh", 1) == 1;
+        r.memory.velocity_fresh = b.count(l, "fresh", 1) == 1;
     }
     {
         auto l = b.line("evaluations");
-        r.force_evaluations = b.count(l, "evaluations", UINT64_MAX);
-        r.velocity_evaluations = b.count(l, "evaluations", UINT64_MAX);
+        r.memory.force_evaluations = b.count(l, "evaluations", UINT64_MAX);
+        r.memory.velocity_evaluations = b.count(l, "evaluations", UINT64_MAX);
     }
     {
         auto l = b.line("max_energy_error");

@@ -17,6 +17,8 @@
 #include <string>
 #include <vector>
 
+#include <sympl/core/stepper_memory.hpp>
+
 namespace sympl::app {
 
 struct checkpoint_record {
@@ -26,10 +28,9 @@ struct checkpoint_record {
     // Where the run is.
     std::size_t step = 0;  // steps done
     std::vector<double> state;  // q then p
-    // splitting_stepper's memory (empty for classic steppers).
-    std::vector<double> force, velocity, q_error, p_error;
-    bool force_fresh = false, velocity_fresh = false;
-    std::uint64_t force_evaluations = 0, velocity_evaluations = 0;
+    // The stepper's carried memory (splitting_stepper; for classic steppers
+    // only the counters).
+    stepper_memory<std::vector<double>> memory;
     // The observer's part.
     double max_energy_error = -1;
     std::uint64_t trajectory_bytes = 0;

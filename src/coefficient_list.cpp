@@ -4,7 +4,7 @@
 #include <cstdlib>
 #include <sstream>
 
-#include <sympl/error.hpp>
+#include <sympl/core/error.hpp>
 
 namespace sympl::app {
 

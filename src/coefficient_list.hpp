@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include <sympl/table.hpp>
+#include <sympl/core/table.hpp>
 
 namespace sympl::app {
 

@@ -30,6 +30,7 @@ struct exchange {
 };
 
 struct ensemble_outcome {
+    std::string scene_name;
     std::size_t trajectories = 0, stable = 0, unstable = 0, invalid = 0;
     std::size_t chaotic = 0;    // stable with MEGNO above chaotic_megno
     double seconds = 0;         // wall time of this process's share

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include <sympl/phase_space_measures.hpp>
+#include <sympl/analysis/phase_space_measures.hpp>
 
 namespace sympl::app {
 

@@ -18,7 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include <sympl/sympl.hpp>
-#include <sympl/table_order.hpp>
+#include <sympl/analysis/table_order.hpp>
 
 #include "coefficient_list.hpp"
 #include "ensemble_run.hpp"

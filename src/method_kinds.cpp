@@ -4,40 +4,28 @@
 #include <algorithm>
 #include <charconv>
 
-#include <sympl/catalog.hpp>
-#include <sympl/error.hpp>
-#include <sympl/extrapolation.hpp>
+#include <sympl/methods/catalog.hpp>
+#include <sympl/core/error.hpp>
+#include <sympl/methods/extrapolation.hpp>
 
 namespace sympl::app {
 
-const std::vector<method_kind_entry>& method_kinds() {
-    static const std::vector<method_kind_entry> kinds = {
-        {method_kind::table, "table", false, false, needs::separable_hamiltonian,
-         "a splitting table: the catalog's (sympl tables) or a scene's own [[table]]; extrapolated(<symmetric table>, k) "
-         "extrapolates it over k runs of 1..k steps (order p + 2(k - 1)); compensated(<table>) sums the updates with "
-         "Kahan's compensation; a force-gradient table (chin_4a, ...) also needs the force's derivative"},
-        {method_kind::processed, "processed", false, false, needs::separable_hamiltonian,
-         "a processed method (blanes_2001_p6, ...): a kernel every step, its processor only where the state is "
-         "looked at; every output is the true state"},
-        {method_kind::logh, "logh", false, false, needs::negative_potential,
-         "logh(<table>): the table in LogH fictitious time (Mikkola & Tanikawa 1999); dt is the fictitious step; "
-         "extrapolated(logh(<symmetric table>), k) as above"},
-        {method_kind::classic, "classic", false, false, needs::any, "a classic stepper of Gould & Tobochnik or Sandvik"},
-        {method_kind::odeint_rk4, "odeint", false, true, needs::any, "Boost.Odeint runge_kutta4, fixed step"},
-        {method_kind::odeint_dopri5, "odeint", true, true, needs::any,
-         "Boost.Odeint controlled runge_kutta_dopri5, absolute = relative tolerance"},
-        {method_kind::odeint_fehlberg78, "odeint", true, true, needs::any,
-         "Boost.Odeint controlled runge_kutta_fehlberg78, absolute = relative tolerance"},
-        {method_kind::odeint_bulirsch_stoer, "odeint", true, true, needs::any,
-         "Boost.Odeint bulirsch_stoer, absolute = relative tolerance"},
-    };
-    return kinds;
-}
+// The registry is listed in the order of method_kind: entry_of indexes it.
+static_assert([] {
+    for (std::size_t k = 0; k < method_kind_entries.size(); ++k)
+        if (std::size_t(method_kind_entries[k].kind) != k) return false;
+    return true;
+}());
 
-const method_kind_entry& entry_of(method_kind kind) {
-    for (const auto& k : method_kinds())
-        if (k.kind == kind) return k;
-    throw invalid_argument("method kind " + std::to_string(int(kind)) + " has no registry entry");
+const std::array<method_kind_entry, 8>& method_kinds() { return method_kind_entries; }
+
+classic_facts classic_at(std::size_t index) {
+    classic_facts facts{"", needs::any, false};
+    std::size_t k = 0;
+    std::apply([&](const auto&... c) { ((k++ == index ? void(facts = {c.name, c.requirement, c.history}) : void()), ...); },
+               classic_methods);
+    if (index >= classic_method_count) throw invalid_argument("classic method index " + std::to_string(index) + " out of range");
+    return facts;
 }
 
 std::string why_not(needs n, const system_form& form) {
@@ -70,16 +58,18 @@ std::string why_not(needs n, const system_form& form) {
 std::vector<std::string> method_names_beside_tables() {
     std::vector<std::string> names;
     std::apply([&](const auto&... m) { (names.push_back(m.name), ...); }, classic_methods);
-    for (const char* odeint : {"odeint_rk4", "odeint_dopri5", "odeint_fehlberg78", "odeint_bulirsch_stoer"})
-        names.push_back(odeint);
+    for (const method_kind_entry& k : method_kind_entries)
+        if (*k.scene_name) names.push_back(k.scene_name);
     for (const table& t : force_gradient_catalog()) names.push_back(t.name());
     for (const processed_method& m : processed_catalog()) names.push_back(m.name);
     return names;
 }
 
 namespace {
-bool is_classic(const std::string& name) {
-    return std::apply([&](const auto&... m) { return ((name == m.name) || ...); }, classic_methods);
+std::optional<std::size_t> classic_index(const std::string& name) {
+    for (std::size_t k = 0; k < classic_method_count; ++k)
+        if (name == classic_at(k).name) return k;
+    return std::nullopt;
 }
 
 std::string trimmed(const std::string& s) {
@@ -132,12 +122,13 @@ std::optional<method_spec> resolve_method(const std::string& name, const std::ma
                                    "' has force-gradient kicks; expected logh(<table without them>)");
         return method_spec{name, method_kind::logh, inner->coefficients};
     }
-    for (const auto& [odeint, kind] : {std::pair{"odeint_rk4", method_kind::odeint_rk4},
-                                       std::pair{"odeint_dopri5", method_kind::odeint_dopri5},
-                                       std::pair{"odeint_fehlberg78", method_kind::odeint_fehlberg78},
-                                       std::pair{"odeint_bulirsch_stoer", method_kind::odeint_bulirsch_stoer}})
-        if (name == odeint) return method_spec{name, kind, std::nullopt};
-    if (is_classic(name)) return method_spec{name, method_kind::classic, std::nullopt};
+    for (const method_kind_entry& k : method_kind_entries)
+        if (*k.scene_name && name == k.scene_name) return method_spec{name, k.kind, std::nullopt};
+    if (const auto index = classic_index(name)) {
+        method_spec m{name, method_kind::classic, std::nullopt};
+        m.classic = *index;
+        return m;
+    }
     const auto& names = catalog_names();
     if (std::find(names.begin(), names.end(), name) != names.end()) return method_spec{name, method_kind::table, method(name)};
     for (const table& t : force_gradient_catalog())
@@ -148,24 +139,17 @@ std::optional<method_spec> resolve_method(const std::string& name, const std::ma
 }
 
 std::string why_not_resumable(const method_spec& m) {
-    bool history = false;
-    std::apply([&](const auto&... c) { ((m.name == c.name ? void(history = c.history) : void()), ...); }, classic_methods);
-    if ((m.kind == method_kind::table && !m.extrapolation_columns) || (m.kind == method_kind::classic && !history))
-        return "";
-    return "method '" + m.name + "' cannot be checkpointed: " +
-           (history ? std::string("it carries a history between steps that the state does not hold")
-            : m.kind == method_kind::processed
-                ? std::string("its kernel runs on a processed state that the true state does not hold")
-                : std::string("only tables (plain or compensated(<table>)) and the classic steppers without "
-                              "history (euler, euler_cromer, euler_richardson, rk2, rk4) resume bit for bit"));
+    const std::string why = m.kind == method_kind::classic && classic_at(m.classic).history
+                                ? "it carries a history between steps that the state does not hold"
+                            : m.extrapolation_columns > 0 ? "its extrapolation combines runs that a checkpoint does not hold"
+                                                          : entry_of(m.kind).not_resumable;
+    return why.empty() ? "" : "method '" + m.name + "' cannot be checkpointed: " + why;
 }
 
 needs requirement_of(const method_spec& m) {
     if (m.kind == method_kind::table && m.coefficients->has_force_gradient()) return needs::differentiable_force;
-    if (m.kind != method_kind::classic) return entry_of(m.kind).requirement;  // logh: also a separable Hamiltonian
-    needs n = needs::any;
-    std::apply([&](const auto&... c) { ((m.name == c.name ? void(n = c.requirement) : void()), ...); }, classic_methods);
-    return n;
+    if (m.kind == method_kind::classic) return classic_at(m.classic).requirement;
+    return entry_of(m.kind).requirement;  // logh: also a separable Hamiltonian
 }
 
 std::string why_not(const method_spec& m, const system_form& form) {

@@ -1,30 +1,24 @@
 #pragma once
-// Every kind of method the program runs, in one place: how a name in a scene
-// resolves, what each kind needs of a system, and why it cannot run where it
-// cannot. Adding a classic stepper is adding a line to classic_methods;
-// adding a kind is adding an entry to method_kinds() and a case to the runner.
+// Every kind of method the program runs, one descriptor each: its name in
+// scenes, what it needs of a system, whether a run can be checkpointed, how
+// the report labels it. How a kind runs is its run_kind<K> in run_kinds.hpp,
+// read by every system through the one dispatch there. Adding a kind is a row
+// here plus its run_kind; adding a classic stepper is a line in classic_methods.
+#include <array>
+#include <cstddef>
 #include <map>
 #include <optional>
 #include <string>
 #include <tuple>
 #include <vector>
 
-#include <sympl/classic_steppers.hpp>
-#include <sympl/processing.hpp>
-#include <sympl/table.hpp>
+#include <sympl/core/table.hpp>
+#include <sympl/methods/classic_steppers.hpp>
+#include <sympl/methods/processing.hpp>
 
 namespace sympl::app {
 
 enum class method_kind { table, processed, logh, classic, odeint_rk4, odeint_dopri5, odeint_fehlberg78, odeint_bulirsch_stoer };
-
-struct method_spec {
-    std::string name;
-    method_kind kind = method_kind::table;
-    std::optional<table> coefficients;  // for kind == table (force-gradient tables too) and logh
-    std::optional<processed_method> processing = std::nullopt;  // for kind == processed
-    int extrapolation_columns = 0;      // extrapolated(<table or logh(table)>, k): k > 0
-    bool compensated = false;           // compensated(<table>): Kahan-summed updates
-};
 
 // What a system's equations offer a method.
 struct system_form {
@@ -42,20 +36,52 @@ std::string why_not(needs n, const system_form& form);
 
 struct method_kind_entry {
     method_kind kind;
-    const char* label;        // the kind column of work_precision.csv
-    bool adaptive;            // swept over tolerances instead of step sizes
-    bool odeint;              // a Boost.Odeint stepper (the report's competitors)
-    needs requirement;        // for classic methods: per method, see classic_methods
-    const char* description;  // for listings and error messages
+    const char* label;             // the kind column of work_precision.csv
+    const char* scene_name = "";   // the name a scene gives, for kinds that are one method (the Odeint steppers)
+    bool adaptive = false;         // swept over tolerances instead of step sizes
+    bool physical_time = true;     // dt is a step in physical time (not a tolerance, not LogH's fictitious step)
+    bool odeint = false;           // a Boost.Odeint stepper (the report's competitors)
+    needs requirement = needs::any;  // classic methods: per method, see classic_methods
+    const char* not_resumable = "";  // why a checkpointed run cannot resume bit for bit ("" when it can)
+    const char* description = "";    // for listings and error messages
 };
-const std::vector<method_kind_entry>& method_kinds();
-const method_kind_entry& entry_of(method_kind kind);
 
-// Whether the method's dt is a step in physical time (not a tolerance, and not
-// LogH's fictitious step).
-inline bool steps_in_physical_time(const method_spec& m) {
-    return !entry_of(m.kind).adaptive && m.kind != method_kind::logh;
-}
+// The registry, in the order of method_kind.
+inline constexpr std::array<method_kind_entry, 8> method_kind_entries{{
+    {.kind = method_kind::table, .label = "table", .requirement = needs::separable_hamiltonian,
+     .description = "a splitting table: the catalog's (sympl tables) or a scene's own [[table]]; extrapolated(<symmetric "
+                    "table>, k) extrapolates it over k runs of 1..k steps (order p + 2(k - 1)); compensated(<table>) sums "
+                    "the updates with Kahan's compensation; a force-gradient table (chin_4a, ...) also needs the force's "
+                    "derivative"},
+    {.kind = method_kind::processed, .label = "processed", .requirement = needs::separable_hamiltonian,
+     .not_resumable = "its kernel runs on a processed state that the true state does not hold",
+     .description = "a processed method (blanes_2001_p6, ...): a kernel every step, its processor only where the state is "
+                    "looked at; every output is the true state"},
+    {.kind = method_kind::logh, .label = "logh", .physical_time = false, .requirement = needs::negative_potential,
+     .not_resumable = "its steps are in fictitious time, which a checkpoint does not record",
+     .description = "logh(<table>): the table in LogH fictitious time (Mikkola & Tanikawa 1999); dt is the fictitious "
+                    "step; extrapolated(logh(<symmetric table>), k) as above"},
+    {.kind = method_kind::classic, .label = "classic",
+     .description = "a classic stepper of Gould & Tobochnik or Sandvik"},
+    {.kind = method_kind::odeint_rk4, .label = "odeint", .scene_name = "odeint_rk4", .odeint = true,
+     .not_resumable = "it is Boost.Odeint's stepper, whose state a checkpoint does not hold",
+     .description = "Boost.Odeint runge_kutta4, fixed step"},
+    {.kind = method_kind::odeint_dopri5, .label = "odeint", .scene_name = "odeint_dopri5", .adaptive = true,
+     .physical_time = false, .odeint = true,
+     .not_resumable = "it is Boost.Odeint's stepper, whose state a checkpoint does not hold",
+     .description = "Boost.Odeint controlled runge_kutta_dopri5, absolute = relative tolerance"},
+    {.kind = method_kind::odeint_fehlberg78, .label = "odeint", .scene_name = "odeint_fehlberg78", .adaptive = true,
+     .physical_time = false, .odeint = true,
+     .not_resumable = "it is Boost.Odeint's stepper, whose state a checkpoint does not hold",
+     .description = "Boost.Odeint controlled runge_kutta_fehlberg78, absolute = relative tolerance"},
+    {.kind = method_kind::odeint_bulirsch_stoer, .label = "odeint", .scene_name = "odeint_bulirsch_stoer",
+     .adaptive = true, .physical_time = false, .odeint = true,
+     .not_resumable = "it is Boost.Odeint's stepper, whose state a checkpoint does not hold",
+     .description = "Boost.Odeint bulirsch_stoer, absolute = relative tolerance"},
+}};
+
+constexpr const method_kind_entry& entry_of(method_kind kind) { return method_kind_entries[std::size_t(kind)]; }
+const std::array<method_kind_entry, 8>& method_kinds();
 
 // A classic stepper of classic_steppers.hpp under its scene name.
 template <template <class, class> class Stepper, needs Needs>
@@ -68,8 +94,7 @@ struct classic_method {
     static constexpr needs requirement = Needs;
 };
 
-// The classic steppers, by name; the runner instantiates each on every system
-// whose form meets its requirement.
+// The classic steppers, by name; a method_spec of kind classic holds its index here.
 inline constexpr std::tuple classic_methods{
     classic_method<euler, needs::any>{"euler", "Euler, first order"},
     classic_method<euler_cromer, needs::any>{"euler_cromer", "Euler-Cromer (Gould & Tobochnik), first order, symplectic"},
@@ -85,6 +110,29 @@ inline constexpr std::tuple classic_methods{
     classic_method<predictor_corrector, needs::any>{"predictor_corrector",
                                                     "predictor-corrector (Gould & Tobochnik eqs. 3.69-3.70)", true},
 };
+inline constexpr std::size_t classic_method_count = std::tuple_size_v<decltype(classic_methods)>;
+
+// What any classic method is, by index, without its stepper type.
+struct classic_facts {
+    const char* name;
+    needs requirement;
+    bool history;
+};
+classic_facts classic_at(std::size_t index);
+
+struct method_spec {
+    std::string name;
+    method_kind kind = method_kind::table;
+    std::optional<table> coefficients;  // for kind == table (force-gradient tables too) and logh
+    std::optional<processed_method> processing = std::nullopt;  // for kind == processed
+    int extrapolation_columns = 0;      // extrapolated(<table or logh(table)>, k): k > 0
+    bool compensated = false;           // compensated(<table>): Kahan-summed updates
+    std::size_t classic = 0;            // for kind == classic: the index in classic_methods
+};
+
+// Whether the method's dt is a step in physical time (not a tolerance, and not
+// LogH's fictitious step).
+inline bool steps_in_physical_time(const method_spec& m) { return entry_of(m.kind).physical_time; }
 
 // The names a scene may give beside the catalog's and its own [[table]]s
 // (and logh(<table>)): the classic steppers, the Odeint kinds, the

@@ -5,7 +5,7 @@
 #include <memory>
 #include <string>
 
-#include <sympl/error.hpp>
+#include <sympl/core/error.hpp>
 
 #ifdef SYMPL_WITH_MPI
 #include <boost/mpi/collectives.hpp>

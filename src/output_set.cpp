@@ -9,7 +9,7 @@
 #include <cstring>
 #include <vector>
 
-#include <sympl/error.hpp>
+#include <sympl/core/error.hpp>
 
 #include "interrupt.hpp"
 

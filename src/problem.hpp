@@ -16,6 +16,13 @@
 
 namespace sympl::app {
 
+// Where a finite run counts as blown up, for every run of the program (single
+// runs, the report, ensembles): a relative energy error above divergence_limit,
+// or, for a system without an energy, a state grown by more than growth_limit.
+// It is reported as unstable at that step, never as a huge number.
+inline constexpr double divergence_limit = 1e3;
+inline constexpr double growth_limit = 1e12;
+
 // Checkpoints of the observed run (checkpoint.hpp): `save` is called every
 // `every_steps` steps with the record filled in but for the caller's part
 // (identity, trajectory bytes); `resume` continues a run from a record.
@@ -62,7 +69,7 @@ struct ensemble_request {
     std::size_t steps = 0;
     std::size_t sample_every = 1;
     bool megno = false;
-    double divergence = 1e3;  // as the program's single runs: an energy error beyond it is a blow-up
+    double divergence = divergence_limit;
     int threads = 0;
 };
 

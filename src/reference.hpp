@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "problem.hpp"
+#include "run_plan.hpp"
 #include "scene.hpp"
 
 namespace sympl::app {
@@ -22,9 +23,10 @@ struct reference_state {
     std::string failure;
 };
 
-// `finest_dt`: the smallest step the runs to be compared use. With `cache`
-// not empty, a reference is stored there under a key of everything it depends on.
-reference_state make_reference(const scene& s, const problem& p, double finest_dt,
+// At the plan's reference step (a quarter of the finest step its runs take).
+// With `cache` not empty, a reference is stored there under a key of
+// everything it depends on.
+reference_state make_reference(const scene& s, const problem& p, const run_plan& plan,
                                const std::filesystem::path& cache = {});
 
 }  // namespace sympl::app

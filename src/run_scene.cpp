@@ -19,6 +19,7 @@
 #include "loop_area.hpp"
 #include "output_set.hpp"
 #include "reference.hpp"
+#include "run_plan.hpp"
 #include "studies/study.hpp"
 #include "writers.hpp"
 
@@ -162,14 +163,78 @@ private:
 
 }  // namespace
 
+namespace {
+
+std::vector<std::string> trajectory_header(std::size_t degrees_of_freedom) {
+    std::vector<std::string> header{"t"};
+    for (const char* coordinate : {"q", "p"})
+        for (std::size_t i = 0; i < degrees_of_freedom; ++i) header.push_back(coordinate + std::to_string(i));
+    return header;
+}
+
+// One planned run: its trajectory file (staged), its checkpoints, its measures.
+outcome run_one(const scene& s, const problem& p, const planned_run& planned, const reference_state& ref,
+                const fs::path& dir, bool resume, const progress& bar, std::vector<std::unique_ptr<atomic_file>>& files,
+                std::vector<checkpointed_method>& finished_checkpoints) {
+    const scene_method& m = *planned.method;
+    run_request rq = planned.request();
+    rq.energy = s.output.energy_error && p.hamiltonian;
+    rq.timing_repeats = s.checkpoint.every_steps ? 0 : 1;  // a checkpointed run is not timed a second time
+    if (bar.tty)
+        rq.progress = [&](double t) {
+            bar.show("  " + m.name + ": t = " + format_number(t, 6) + " of " + format_number(s.t_end, 6) + " (" +
+                     format_number(100 * (t - s.t0) / (s.t_end - s.t0), 3) + "%)");
+        };
+    std::unique_ptr<atomic_file> trajectory;
+    const std::string header = csv_line(trajectory_header(p.degrees_of_freedom));
+    if (s.output.trajectory_every) {
+        trajectory = std::make_unique<atomic_file>(dir / (file_name_part(s.name) + "_" + file_name_part(m.name) +
+                                                          "_trajectory.csv"));
+        trajectory->stream() << header << std::setprecision(17);
+        rq.trajectory = &trajectory->stream();
+        rq.trajectory_every = s.output.trajectory_every;
+    }
+    std::optional<checkpointed_method> checkpoints;
+    if (s.checkpoint.every_steps) {
+        checkpoints.emplace(s, m, rq.dt, resume, trajectory ? header : std::string());
+        checkpoints->attach(rq);
+    }
+    outcome o{&m, p.run(m, rq, s.t0, s.t_end, p.x0)};
+    if (checkpoints && trajectory) checkpoints->copy_trajectory(trajectory->stream());
+    if (trajectory && !o.r.stable)  // a comment line (gnuplot and CSV readers with '#' comments skip it)
+        trajectory->stream() << "# truncated: " << o.r.failure << "\n";
+    if (trajectory) files.push_back(std::move(trajectory));
+    if (checkpoints) finished_checkpoints.push_back(std::move(*checkpoints));
+    if (o.r.stable && ref.failure.empty()) o.final_error = relative_difference(o.r.final_state, ref.x);
+    if (o.r.stable && s.output.loop_area) o.loop_area_error = loop_area_error(p, m, rq, s.t0, s.t_end);
+    return o;
+}
+
+// The summary's first lines: what ran, against which reference; a sweep says
+// which of its values `sympl run` takes.
+void write_heading(const scene& s, const run_plan& plan, const reference_state& ref, std::ostream& out) {
+    out << s.name << ": " << s.system << ", t = " << format_number(s.t0, 17) << " .. " << format_number(s.t_end, 17)
+        << ", dt = " << format_number(s.dt.front(), 17) << " (dopri5 tolerance " << format_number(s.tolerances.front())
+        << "), reference: " << ref.kind;
+    if (ref.error > 0) out << " (its own error ~" << format_number(ref.error, 2) << ")";
+    out << "\n";
+    for (const scene_method& m : s.methods)
+        if (sweep_of(s, m).size() > plan.sweep_length(m)) {
+            out << "  (a sweep: each method runs its first, largest, value; `sympl report` runs them all)\n";
+            break;
+        }
+    if (!ref.failure.empty()) out << "  no final errors: " << ref.failure << "\n";
+}
+
+}  // namespace
+
 void run_scene(const scene& s, bool json, std::ostream& out, double max_steps, bool resume) {
     const problem p = problem_of(s);
-    check_run_size(s, p, max_steps, false);
-    // The reference resolves the steps this run takes (the first of each sweep).
-    double finest = s.dt.front();
-    for (const scene_method& m : s.methods)
-        if (steps_in_physical_time(m)) finest = std::min(finest, sweep_of(s, m).front());
-    const reference_state ref = make_reference(s, p, finest);
+    const run_plan plan = plan_runs(s, p, sweep_use::first);
+    check_run_size(plan, max_steps);
+    if (resume && !s.checkpoint.every_steps)
+        throw scene_error(s.source + ": --resume, but the scene has no checkpoint = {every_steps = N, file = \"...\"}");
+    const reference_state ref = make_reference(s, p, plan);
     // Files, when the scene asks for any, are staged and moved into place together.
     std::optional<output_set> outputs;
     if (s.output.trajectory_every) outputs.emplace(s.output.directory);
@@ -178,45 +243,8 @@ void run_scene(const scene& s, bool json, std::ostream& out, double max_steps, b
     const progress bar;  // long runs show how far they are on a terminal
     std::vector<std::unique_ptr<atomic_file>> files;  // committed together at the end
     std::vector<checkpointed_method> finished_checkpoints;
-    if (resume && !s.checkpoint.every_steps)
-        throw scene_error(s.source + ": --resume, but the scene has no checkpoint = {every_steps = N, file = \"...\"}");
-    for (const scene_method& m : s.methods) {
-        run_request rq;
-        rq.dt = sweep_of(s, m).front();
-        rq.tolerance = rq.dt;
-        rq.energy = s.output.energy_error && p.hamiltonian;
-        rq.timing_repeats = s.checkpoint.every_steps ? 0 : 1;  // a checkpointed run is not timed a second time
-        if (bar.tty)
-            rq.progress = [&](double t) {
-                bar.show("  " + m.name + ": t = " + format_number(t, 6) + " of " + format_number(s.t_end, 6) + " (" +
-                         format_number(100 * (t - s.t0) / (s.t_end - s.t0), 3) + "%)");
-            };
-        std::unique_ptr<atomic_file> trajectory;
-        std::vector<std::string> header{"t"};
-        for (const char* coordinate : {"q", "p"})
-            for (std::size_t i = 0; i < p.degrees_of_freedom; ++i) header.push_back(coordinate + std::to_string(i));
-        if (s.output.trajectory_every) {
-            trajectory = std::make_unique<atomic_file>(dir / (file_name_part(s.name) + "_" + file_name_part(m.name) +
-                                                              "_trajectory.csv"));
-            trajectory->stream() << csv_line(header) << std::setprecision(17);
-            rq.trajectory = &trajectory->stream();
-            rq.trajectory_every = s.output.trajectory_every;
-        }
-        std::optional<checkpointed_method> checkpoints;
-        if (s.checkpoint.every_steps) {
-            checkpoints.emplace(s, m, rq.dt, resume, trajectory ? csv_line(header) : std::string());
-            checkpoints->attach(rq);
-        }
-        outcome o{&m, p.run(m, rq, s.t0, s.t_end, p.x0)};
-        if (checkpoints && trajectory) checkpoints->copy_trajectory(trajectory->stream());
-        if (trajectory && !o.r.stable)  // a comment line (gnuplot and CSV readers with '#' comments skip it)
-            trajectory->stream() << "# truncated: " << o.r.failure << "\n";
-        if (trajectory) files.push_back(std::move(trajectory));
-        if (checkpoints) finished_checkpoints.push_back(std::move(*checkpoints));
-        if (o.r.stable && ref.failure.empty()) o.final_error = relative_difference(o.r.final_state, ref.x);
-        if (o.r.stable && s.output.loop_area) o.loop_area_error = loop_area_error(p, m, rq, s.t0, s.t_end);
-        outcomes.push_back(std::move(o));
-    }
+    for (const planned_run& r : plan.runs)
+        outcomes.push_back(run_one(s, p, r, ref, dir, resume, bar, files, finished_checkpoints));
     bar.done();
     for (auto& f : files) f->commit();
     if (outputs) outputs->commit();
@@ -227,12 +255,7 @@ void run_scene(const scene& s, bool json, std::ostream& out, double max_steps, b
         out << all.dump(2) << "\n";
         return;
     }
-    out << s.name << ": " << s.system << ", t = " << format_number(s.t0, 17) << " .. " << format_number(s.t_end, 17)
-        << ", dt = " << format_number(s.dt.front(), 17) << " (dopri5 tolerance " << format_number(s.tolerances.front())
-        << "), reference: " << ref.kind;
-    if (ref.error > 0) out << " (its own error ~" << format_number(ref.error, 2) << ")";
-    out << "\n";
-    if (!ref.failure.empty()) out << "  no final errors: " << ref.failure << "\n";
+    write_heading(s, plan, ref, out);
     for (const outcome& o : outcomes) out << "  " << as_text(s, o) << "\n";
 }
 

@@ -8,91 +8,13 @@
 #include <set>
 #include <sstream>
 
-#include <toml++/toml.h>
+#include <sympl/methods/catalog.hpp>
 
-#include <sympl/catalog.hpp>
-
-#include "format.hpp"
-#include "systems.hpp"
+#include "scene_reader.hpp"
 
 namespace sympl::app {
 
 namespace {
-
-std::string join(const std::vector<std::string>& v) {
-    std::string out;
-    for (const auto& s : v) out += (out.empty() ? "" : ", ") + s;
-    return out;
-}
-
-struct reader {
-    std::string source;
-
-    [[noreturn]] void fail(const toml::source_region& where, const std::string& what) const {
-        throw scene_error(source + ":" + std::to_string(where.begin.line) + ":" + std::to_string(where.begin.column) +
-                          ": " + what);
-    }
-    [[noreturn]] void fail(const toml::node& n, const std::string& what) const { fail(n.source(), what); }
-
-    // Only the listed keys: anything else is a typo the user wants to hear about.
-    void only_keys(const toml::table& t, const std::set<std::string>& allowed, const std::string& where) const {
-        for (const auto& [key, node] : t)
-            if (!allowed.count(std::string(key.str()))) {
-                std::vector<std::string> names(allowed.begin(), allowed.end());
-                fail(node, "unknown key '" + std::string(key.str()) + "' in " + where + "; expected one of: " + join(names));
-            }
-    }
-
-    double number(const toml::node& n, const std::string& key) const {
-        if (auto v = n.value<double>(); v && (n.is_floating_point() || n.is_integer())) return *v;
-        fail(n, "'" + key + "' must be a number");
-    }
-    double positive(const toml::node& n, const std::string& key) const {
-        const double v = number(n, key);
-        if (!(v > 0) || !std::isfinite(v))
-            fail(n, "'" + key + "' = " + shortest(v) + "; expected a finite number > 0");
-        return v;
-    }
-    std::string string(const toml::node& n, const std::string& key) const {
-        if (auto v = n.value<std::string>(); v && n.is_string()) return *v;
-        fail(n, "'" + key + "' must be a string");
-    }
-    bool boolean(const toml::node& n, const std::string& key) const {
-        if (auto v = n.value<bool>(); v && n.is_boolean()) return *v;
-        fail(n, "'" + key + "' must be true or false");
-    }
-    std::vector<double> numbers(const toml::node& n, const std::string& key) const {
-        const toml::array* a = n.as_array();
-        if (!a) fail(n, "'" + key + "' must be an array of numbers");
-        std::vector<double> out;
-        for (const auto& e : *a) out.push_back(number(e, key));
-        return out;
-    }
-
-    // dt = 0.01 | [0.1, 0.05] | { from = 0.1, to = 0.001, count = 7 } (geometric)
-    std::vector<double> sweep(const toml::node& n, const std::string& key) const {
-        std::vector<double> out;
-        if (n.is_array()) {
-            for (const auto& e : *n.as_array()) out.push_back(positive(e, key));
-            if (out.empty()) fail(n, "'" + key + "' is an empty array; expected at least one value");
-        } else if (const toml::table* t = n.as_table()) {
-            only_keys(*t, {"from", "to", "count"}, "'" + key + "'");
-            const toml::node* from = t->get("from");
-            const toml::node* to = t->get("to");
-            const toml::node* count = t->get("count");
-            if (!from || !to || !count) fail(n, "'" + key + "' needs from, to and count");
-            const double a = positive(*from, key + ".from"), b = positive(*to, key + ".to");
-            const auto c = count->value<std::int64_t>();
-            if (!c || *c < 1 || *c > 1000) fail(*count, "'" + key + ".count' must be an integer in [1, 1000]");
-            for (std::int64_t i = 0; i < *c; ++i)
-                out.push_back(*c == 1 ? a : a * std::pow(b / a, double(i) / double(*c - 1)));
-        } else {
-            out.push_back(positive(n, key));
-        }
-        std::sort(out.rbegin(), out.rend());
-        return out;
-    }
-};
 
 // "name" or {name = "name", dt = ..., tolerances = ...}
 scene_method method_by_name(const reader& r, const toml::node& n, const std::map<std::string, table>& inline_tables) {
@@ -149,77 +71,6 @@ void read_inline_table(const reader& r, const toml::node& e, std::map<std::strin
     }
 }
 
-// [ensemble]: a grid over the system's parameters or a CSV of states, one
-// table, one dt. Counts are range-checked here; grid points that are not
-// valid states become rows of status `invalid` when the ensemble runs.
-ensemble_spec read_ensemble(const reader& r, const toml::node& node, const scene& s, const system_entry& entry,
-                            const toml::array& methods) {
-    const toml::table* t = node.as_table();
-    if (!t) r.fail(node, "'ensemble' must be a table with grid (or states) and indicator");
-    r.only_keys(*t, {"grid", "states", "indicator", "sample_every", "orbits"}, "[ensemble]");
-    ensemble_spec e;
-    const auto integer = [&](const toml::node& n, const std::string& key, std::int64_t low, std::int64_t high) {
-        const auto v = n.value<std::int64_t>();
-        if (!n.is_integer() || !v || *v < low || *v > high)
-            r.fail(n, "'" + key + "' must be an integer in [" + std::to_string(low) + ", " + std::to_string(high) + "]");
-        return std::size_t(*v);
-    };
-    const toml::node* grid = t->get("grid");
-    const toml::node* states = t->get("states");
-    if (!grid == !states) r.fail(node, "[ensemble] needs either grid = {name = {from, to, count}, ...} or states = \"file.csv\"");
-    if (grid) {
-        const toml::table* g = grid->as_table();
-        if (!g || g->empty()) r.fail(*grid, "'ensemble.grid' must be a table of {from, to, count} per parameter");
-        std::set<std::string> known;
-        for (const auto& q : entry.parameters) known.insert(q.name);
-        r.only_keys(*g, known, "ensemble.grid of " + s.system);
-        std::vector<std::pair<toml::source_position, ensemble_axis>> axes;
-        for (const auto& [key, n] : *g) {
-            const std::string name(key.str());
-            const toml::table* a = n.as_table();
-            if (!a) r.fail(n, "'ensemble.grid." + name + "' must be {from = ..., to = ..., count = ...}");
-            r.only_keys(*a, {"from", "to", "count"}, "ensemble.grid." + name);
-            if (!a->get("from") || !a->get("to") || !a->get("count"))
-                r.fail(n, "'ensemble.grid." + name + "' needs from, to and count");
-            ensemble_axis axis{name, r.number(*a->get("from"), name + ".from"), r.number(*a->get("to"), name + ".to"),
-                               integer(*a->get("count"), name + ".count", 1, 1000000)};
-            if (!std::isfinite(axis.from) || !std::isfinite(axis.to))
-                r.fail(n, "'ensemble.grid." + name + "' from = " + shortest(axis.from) + ", to = " + shortest(axis.to) +
-                              "; expected finite numbers");
-            axes.emplace_back(n.source().begin, axis);
-        }
-        // toml++ keeps keys sorted: the file's order comes from their positions.
-        std::sort(axes.begin(), axes.end(), [](const auto& a, const auto& b) {
-            return std::pair(a.first.line, a.first.column) < std::pair(b.first.line, b.first.column);
-        });
-        for (auto& [where, axis] : axes) e.grid.push_back(axis);
-        double total = 1;
-        for (const auto& axis : e.grid) total *= double(axis.count);
-        if (total > max_ensemble_size)
-            r.fail(*grid, "the grid has " + shortest(total) + " points; expected at most " + shortest(max_ensemble_size));
-    } else {
-        e.states_file = r.string(*states, "ensemble.states");
-        if (e.states_file.empty()) r.fail(*states, "'ensemble.states' is empty; expected a CSV file name");
-        if (!s.source.empty() && s.source != "built-in" && std::filesystem::path(e.states_file).is_relative())
-            e.states_file = (std::filesystem::path(s.source).parent_path() / e.states_file).string();
-    }
-    if (const toml::node* i = t->get("indicator")) {
-        const std::string v = r.string(*i, "ensemble.indicator");
-        if (v != "megno" && v != "none") r.fail(*i, "ensemble.indicator = '" + v + "'; expected \"megno\" or \"none\"");
-        e.megno = v == "megno";
-    }
-    if (const toml::node* k = t->get("sample_every")) e.sample_every = integer(*k, "ensemble.sample_every", 1, 1000000000);
-    if (const toml::node* k = t->get("orbits")) e.orbits = integer(*k, "ensemble.orbits", 0, 100);
-    if (s.methods.size() != 1 || s.methods[0].kind != method_kind::table || s.methods[0].compensated ||
-        s.methods[0].extrapolation_columns > 0)
-        r.fail(methods, "an ensemble runs one splitting table; expected methods = [\"<table>\"] (one catalog or [[table]] name)");
-    if (s.methods[0].coefficients->has_force_gradient())
-        r.fail(methods, "an ensemble runs plain kick-drift tables; '" + s.methods[0].name +
-                            "' has force-gradient kicks (expected a catalog or [[table]] name)");
-    if (s.dt.size() != 1) r.fail(node, "an ensemble runs one step size; expected dt = <number>, not a sweep");
-    return e;
-}
-
 }  // namespace
 
 std::size_t ensemble_spec::size() const {
@@ -228,34 +79,11 @@ std::size_t ensemble_spec::size() const {
     return n;
 }
 
-scene parse_scene(const std::string& text, const std::string& source, bool quick) {
-    const reader r{source};
-    toml::table doc;
-    try {
-        doc = toml::parse(text, source);
-    } catch (const toml::parse_error& e) {
-        r.fail(e.source(), "not valid TOML: " + std::string(e.description()));
-    }
-    r.only_keys(doc, {"name", "system", "parameters", "initial", "methods", "table", "dt", "tolerances", "t0", "t_end",
-                      "output", "quick", "checkpoint", "ensemble"},
-                "the scene");
-    // [quick]: what `--quick` changes (a shorter span, a shorter sweep).
-    const toml::table* quick_table = nullptr;
-    if (const toml::node* q = doc.get("quick")) {
-        quick_table = q->as_table();
-        if (!quick_table) r.fail(*q, "'quick' must be a table of t_end, dt and tolerances");
-        r.only_keys(*quick_table, {"t_end", "dt", "tolerances"}, "[quick]");
-    }
-    const auto timing = [&](const char* key) -> const toml::node* {
-        if (quick && quick_table && quick_table->get(key)) return quick_table->get(key);
-        return doc.get(key);
-    };
-    scene s;
-    s.source = source;
-    s.text_hash = fnv1a_hex(text);
-    const toml::source_region top{{1, 1}, {1, 1}, nullptr};
-    s.name = doc.get("name") ? r.string(*doc.get("name"), "name") : source;
+namespace {
 
+// system, [parameters], [initial]
+void read_system(const reader& r, const toml::table& doc, scene& s) {
+    const toml::source_region top{{1, 1}, {1, 1}, nullptr};
     const toml::node* system = doc.get("system");
     if (!system) r.fail(top, "missing 'system'; expected one of: " + join(system_names()));
     s.system = r.string(*system, "system");
@@ -288,7 +116,11 @@ scene parse_scene(const std::string& text, const std::string& source, bool quick
             r.fail(*i, "initial q has " + std::to_string(s.q0.size()) + " values and p has " + std::to_string(s.p0.size()) +
                            "; expected the same number, at least one");
     }
+}
 
+// [[table]]s and methods
+void read_methods(const reader& r, const toml::table& doc, scene& s) {
+    const toml::source_region top{{1, 1}, {1, 1}, nullptr};
     std::map<std::string, table> inline_tables;
     if (const toml::node* tables = doc.get("table")) {
         const toml::array* a = tables->as_array();
@@ -307,7 +139,75 @@ scene parse_scene(const std::string& text, const std::string& source, bool quick
             if (s.methods[k].name == s.methods.back().name)
                 r.fail(m, "method '" + s.methods.back().name + "' is listed twice; expected each method once");
     }
+}
 
+// [output]
+void read_output(const reader& r, const toml::node& o, scene& s) {
+    const toml::table* t = o.as_table();
+    if (!t) r.fail(o, "'output' must be a table");
+    r.only_keys(*t, {"energy_error", "trajectory_every", "final_state", "loop_area", "directory"}, "[output]");
+    if (auto* n = t->get("energy_error")) s.output.energy_error = r.boolean(*n, "output.energy_error");
+    if (auto* n = t->get("final_state")) s.output.final_state = r.boolean(*n, "output.final_state");
+    if (auto* n = t->get("loop_area")) s.output.loop_area = r.boolean(*n, "output.loop_area");
+    if (auto* n = t->get("directory")) s.output.directory = r.string(*n, "output.directory");
+    if (auto* n = t->get("trajectory_every")) {
+        const auto k = n->value<std::int64_t>();
+        if (!k || !n->is_integer() || *k < 1)
+            r.fail(*n, "'output.trajectory_every' must be an integer >= 1 (every k-th step; leave it out for no "
+                       "trajectory)");
+        s.output.trajectory_every = std::size_t(*k);
+    }
+}
+
+// checkpoint = {every_steps = N, file = "..."}
+void read_checkpoint(const reader& r, const toml::node& c, const toml::array& methods, scene& s) {
+    const toml::table* t = c.as_table();
+    if (!t) r.fail(c, "'checkpoint' must be a table {every_steps = N, file = \"...\"}");
+    r.only_keys(*t, {"every_steps", "file"}, "'checkpoint'");
+    const toml::node* every = t->get("every_steps");
+    const toml::node* file = t->get("file");
+    if (!every || !file) r.fail(c, "'checkpoint' needs every_steps and file");
+    const auto n = every->value<std::int64_t>();
+    if (!every->is_integer() || !n || *n < 1 || *n > std::int64_t(1e15))
+        r.fail(*every, "'checkpoint.every_steps' must be an integer in [1, 1e15]");
+    s.checkpoint.every_steps = std::size_t(*n);
+    s.checkpoint.file = r.string(*file, "checkpoint.file");
+    if (s.checkpoint.file.empty()) r.fail(*file, "'checkpoint.file' is empty; expected a file name");
+    for (std::size_t k = 0; k < s.methods.size(); ++k)
+        if (const std::string why = why_not_resumable(s.methods[k]); !why.empty()) r.fail(*methods.get(k), why);
+}
+
+}  // namespace
+
+scene parse_scene(const std::string& text, const std::string& source, bool quick) {
+    const reader r{source};
+    toml::table doc;
+    try {
+        doc = toml::parse(text, source);
+    } catch (const toml::parse_error& e) {
+        r.fail(e.source(), "not valid TOML: " + std::string(e.description()));
+    }
+    r.only_keys(doc, {"name", "system", "parameters", "initial", "methods", "table", "dt", "tolerances", "t0", "t_end",
+                      "output", "quick", "checkpoint", "ensemble"},
+                "the scene");
+    // [quick]: what `--quick` changes (a shorter span, a shorter sweep).
+    const toml::table* quick_table = nullptr;
+    if (const toml::node* q = doc.get("quick")) {
+        quick_table = q->as_table();
+        if (!quick_table) r.fail(*q, "'quick' must be a table of t_end, dt and tolerances");
+        r.only_keys(*quick_table, {"t_end", "dt", "tolerances"}, "[quick]");
+    }
+    const auto timing = [&](const char* key) -> const toml::node* {
+        if (quick && quick_table && quick_table->get(key)) return quick_table->get(key);
+        return doc.get(key);
+    };
+    scene s;
+    s.source = source;
+    s.text_hash = fnv1a_hex(text);
+    const toml::source_region top{{1, 1}, {1, 1}, nullptr};
+    s.name = doc.get("name") ? r.string(*doc.get("name"), "name") : source;
+    read_system(r, doc, s);
+    read_methods(r, doc, s);
     const toml::node* dt = timing("dt");
     if (!dt) r.fail(top, "missing 'dt'; expected a step size, an array, or {from, to, count}");
     s.dt = r.sweep(*dt, "dt");
@@ -321,37 +221,10 @@ scene parse_scene(const std::string& text, const std::string& source, bool quick
         r.fail(*t_end, "t_end = " + shortest(s.t_end) + " is not after t0 = " + shortest(s.t0) +
                            "; expected t_end > t0");
 
-    if (const toml::node* o = doc.get("output")) {
-        const toml::table* t = o->as_table();
-        if (!t) r.fail(*o, "'output' must be a table");
-        r.only_keys(*t, {"energy_error", "trajectory_every", "final_state", "loop_area", "directory"}, "[output]");
-        if (auto* n = t->get("energy_error")) s.output.energy_error = r.boolean(*n, "output.energy_error");
-        if (auto* n = t->get("final_state")) s.output.final_state = r.boolean(*n, "output.final_state");
-        if (auto* n = t->get("loop_area")) s.output.loop_area = r.boolean(*n, "output.loop_area");
-        if (auto* n = t->get("directory")) s.output.directory = r.string(*n, "output.directory");
-        if (auto* n = t->get("trajectory_every")) {
-            const auto k = n->value<std::int64_t>();
-            if (!k || !n->is_integer() || *k < 0) r.fail(*n, "'output.trajectory_every' must be an integer >= 0");
-            s.output.trajectory_every = std::size_t(*k);
-        }
-    }
-    if (const toml::node* c = doc.get("checkpoint")) {
-        const toml::table* t = c->as_table();
-        if (!t) r.fail(*c, "'checkpoint' must be a table {every_steps = N, file = \"...\"}");
-        r.only_keys(*t, {"every_steps", "file"}, "'checkpoint'");
-        const toml::node* every = t->get("every_steps");
-        const toml::node* file = t->get("file");
-        if (!every || !file) r.fail(*c, "'checkpoint' needs every_steps and file");
-        const auto n = every->value<std::int64_t>();
-        if (!every->is_integer() || !n || *n < 1 || *n > std::int64_t(1e15))
-            r.fail(*every, "'checkpoint.every_steps' must be an integer in [1, 1e15]");
-        s.checkpoint.every_steps = std::size_t(*n);
-        s.checkpoint.file = r.string(*file, "checkpoint.file");
-        if (s.checkpoint.file.empty()) r.fail(*file, "'checkpoint.file' is empty; expected a file name");
-        for (std::size_t k = 0; k < s.methods.size(); ++k)
-            if (const std::string why = why_not_resumable(s.methods[k]); !why.empty()) r.fail(*ma->get(k), why);
-    }
-    if (const toml::node* e = doc.get("ensemble")) s.ensemble = read_ensemble(r, *e, s, entry, *ma);
+    if (const toml::node* o = doc.get("output")) read_output(r, *o, s);
+    const toml::array& methods = *doc.get("methods")->as_array();
+    if (const toml::node* c = doc.get("checkpoint")) read_checkpoint(r, *c, methods, s);
+    if (const toml::node* e = doc.get("ensemble")) s.ensemble = read_ensemble(r, *e, s, *find_system(s.system), methods);
     return s;
 }
 
@@ -370,61 +243,6 @@ scene load_scene(const std::string& path, bool quick) {
         throw scene_error(path + ":" + std::to_string(1 + std::count(text.begin(), text.begin() + std::ptrdiff_t(text.find('\0')), '\n')) +
                           ": a NUL byte; expected a text file (TOML)");
     return parse_scene(text, path, quick);
-}
-
-const std::vector<double>& sweep_of(const scene& s, const scene_method& m) {
-    if (entry_of(m.kind).adaptive) return m.tolerances.empty() ? s.tolerances : m.tolerances;
-    return m.dt.empty() ? s.dt : m.dt;
-}
-
-double finest_step(const scene& s) {
-    double finest = *std::min_element(s.dt.begin(), s.dt.end());
-    for (const scene_method& m : s.methods)
-        if (steps_in_physical_time(m) && !m.dt.empty())
-            finest = std::min(finest, *std::min_element(m.dt.begin(), m.dt.end()));
-    return finest;
-}
-
-problem problem_of(const scene& s) {
-    problem p = make_problem(s.system, s.parameters, s.q0, s.p0, s.source);
-    // An energy that is already infinite (q at a singularity, 1e308 squared)
-    // would make every energy error read 0 or NaN.
-    if (p.energy)
-        if (const double e0 = p.energy(p.x0); !std::isfinite(e0))
-            throw scene_error(s.source + ": the initial state of " + s.system + " has energy H = " + shortest(e0) +
-                              "; expected a state of finite energy");
-    for (const method_spec& m : s.methods)
-        if (const std::string why = why_not(m, p.form); !why.empty()) throw scene_error(s.source + ": " + why);
-    return p;
-}
-
-void check_run_size(const scene& s, const problem& p, double max_steps, bool whole_sweep) {
-    const double span = s.t_end - s.t0;
-    const auto refuse = [&](const std::string& what, double dt, double steps) {
-        throw scene_error(s.source + ": " + what + " at dt = " + shortest(dt) + " over t = " + shortest(s.t0) + " .. " +
-                          shortest(s.t_end) + " takes " + format_number(steps, 3) + " steps; the limit is " +
-                          format_number(max_steps, 3) + " (raise it with --max-steps)");
-    };
-    double finest = HUGE_VAL;
-    for (const scene_method& m : s.methods) {
-        if (!steps_in_physical_time(m) || entry_of(m.kind).adaptive) continue;
-        const auto& sweep = sweep_of(s, m);
-        const std::size_t count = whole_sweep ? sweep.size() : 1;
-        const double inner = m.extrapolation_columns > 0
-                                 ? double(m.extrapolation_columns) * double(m.extrapolation_columns + 1) / 2
-                                 : 1.0;
-        for (std::size_t i = 0; i < count; ++i) {
-            finest = std::min(finest, sweep[i]);
-            if (const double steps = std::ceil(span / sweep[i]) * inner; !(steps <= max_steps))
-                refuse("method '" + m.name + "'", sweep[i], steps);
-        }
-    }
-    if (!std::isfinite(finest)) finest = whole_sweep ? finest_step(s) : s.dt.front();
-    if (whole_sweep) finest = std::min(finest, finest_step(s));
-    // The reference (reference.hpp) runs at finest/4 and finest/2 unless the system is exact.
-    if (!p.exact)
-        if (const double steps = std::ceil(span / (finest / 4)) * 1.5; !(steps <= max_steps))
-            refuse("the reference (its dt is a quarter of the finest step, " + shortest(finest) + ")", finest / 4, steps);
 }
 
 std::vector<scene> default_scenes(bool quick) {

@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include <sympl/error.hpp>
-#include <sympl/table.hpp>
+#include <sympl/core/error.hpp>
+#include <sympl/core/table.hpp>
 
 #include "checkpoint.hpp"
 #include "method_kinds.hpp"
@@ -89,27 +89,9 @@ inline constexpr std::size_t max_scene_bytes = 1 << 20;
 scene parse_scene(const std::string& text, const std::string& source, bool quick = false);
 scene load_scene(const std::string& path, bool quick = false);
 
-// The step sizes (or, for adaptive kinds, tolerances) the method is swept over, largest first.
-const std::vector<double>& sweep_of(const scene& s, const scene_method& m);
-
-// The smallest physical step any fixed-step method of the scene takes (the
-// scene's dt when none does): what a reference must resolve.
-double finest_step(const scene& s);
-
-// The scene's system as a problem, every method checked against it: a method
-// it cannot run is a scene_error before anything runs or is written.
-problem problem_of(const scene& s);
-
 // Runs longer than this many steps are refused before anything runs
 // (`--max-steps` raises it): about a minute of leapfrog on a small system.
 inline constexpr double default_max_steps = 1e9;
-
-// Refuses, with the figures, a scene whose runs would take more than
-// max_steps steps each: every fixed-step method at every step size it will
-// use (the whole sweep, or only its first value for `sympl run`), an
-// extrapolated method counting its inner steps, and the reference run.
-// LogH and adaptive methods choose their own steps and are not counted.
-void check_run_size(const scene& s, const problem& p, double max_steps, bool whole_sweep);
 
 // The built-in scenes: the TOML files of src/scenes/, compiled in.
 std::vector<scene> default_scenes(bool quick);

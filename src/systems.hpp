@@ -3,11 +3,15 @@
 // its parameters (defaults, valid ranges, meaning and units), whether it has
 // an exact solution, and the factory that builds it with its default initial
 // state. Scene parsing, the runner, the report, `sympl systems` and the error
-// messages all read it: adding a system is adding an entry in systems.cpp
-// (and its header in hamiltonians/).
+// messages all read it. Adding a system is its header in hamiltonians/, one
+// file systems/<name>.cpp with its entry (written with designated
+// initializers), and its line in systems/list.hpp. Each entry is a
+// translation unit of its own: it instantiates every method kind for its
+// system, and the files build in parallel.
 #include <functional>
 #include <limits>
 #include <map>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -16,14 +20,14 @@
 namespace sympl::app {
 
 struct parameter {
-    std::string name;
+    std::string name{};
     double value = 0;  // the default
     double low = -std::numeric_limits<double>::infinity();
     double high = std::numeric_limits<double>::infinity();
     bool low_open = false;   // low itself is not allowed
     bool high_open = false;  // high itself is not allowed
     bool integer = false;
-    std::string meaning;  // with its unit where it has one
+    std::string meaning{};  // with its unit where it has one
     // Sets only the initial state, not the Hamiltonian (Henon-Heiles energy,
     // q2, p2): an ensemble over it runs in one Hamiltonian's batches.
     bool initial_state = false;
@@ -35,10 +39,30 @@ struct parameter {
 
 using parameter_values = std::map<std::string, double>;
 
+// Parameter kinds, by their ranges.
+inline constexpr double largest_chain = 1e6;  // degrees of freedom: 16 MB per state, a run needs a few
+inline parameter positive(std::string name, double value, std::string meaning) {
+    return {.name = std::move(name), .value = value, .low = 0, .low_open = true, .meaning = std::move(meaning)};
+}
+inline parameter nonnegative(std::string name, double value, std::string meaning) {
+    return {.name = std::move(name), .value = value, .low = 0, .meaning = std::move(meaning)};
+}
+inline parameter any(std::string name, double value, std::string meaning) {
+    return {.name = std::move(name), .value = value, .meaning = std::move(meaning)};
+}
+inline parameter count(std::string name, double value, double low, std::string meaning) {
+    return {.name = std::move(name), .value = value, .low = low, .high = largest_chain, .integer = true,
+            .meaning = std::move(meaning)};
+}
+inline parameter of_initial_state(parameter p) {
+    p.initial_state = true;
+    return p;
+}
+
 struct system_entry {
     std::string name;
     std::string description;  // the Hamiltonian or equations, with the source
-    std::vector<parameter> parameters;
+    std::vector<parameter> parameters{};
     bool exact = false;  // an exact solution from the default state (and parameters, see description)
     std::function<problem(const parameter_values&)> build;  // every parameter present and valid
     bool negative_potential = false;  // V(q) < 0 everywhere (gravitation): LogH applies

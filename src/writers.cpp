@@ -11,7 +11,7 @@
 #include <cstring>
 #include <iostream>
 
-#include <sympl/error.hpp>
+#include <sympl/core/error.hpp>
 
 extern char** environ;
 

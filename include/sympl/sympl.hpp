@@ -1,27 +1,28 @@
 #pragma once
 // sympl: symplectic splitting methods for separable Hamiltonians. Everything
-// but the Boost.Odeint interop (odeint.hpp), which pulls in all of Odeint, and
-// the 113-bit order measurement (table_order.hpp), which pulls in Boost.Multiprecision,
-// and ensembles over MPI ranks (ensemble_mpi.hpp), which need Boost.MPI.
-#include "adaptive.hpp"
-#include "batch.hpp"
-#include "catalog.hpp"
-#include "chaos_indicator.hpp"
-#include "classic_steppers.hpp"
-#include "convergence.hpp"
-#include "dual.hpp"
-#include "ensemble.hpp"
-#include "equations_of_motion.hpp"
-#include "extrapolation.hpp"
-#include "error.hpp"
-#include "hamiltonian.hpp"
-#include "integrate.hpp"
-#include "phase_space.hpp"
-#include "phase_space_measures.hpp"
-#include "poincare_section.hpp"
-#include "order_conditions.hpp"
-#include "processing.hpp"
-#include "richardson.hpp"
-#include "splitting_stepper.hpp"
-#include "table.hpp"
-#include "time_transformation.hpp"
+// but the Boost.Odeint interop (interop/odeint.hpp), which pulls in all of
+// Odeint, the 113-bit order measurement (analysis/table_order.hpp), which pulls
+// in Boost.Multiprecision, and ensembles over MPI ranks
+// (parallel/ensemble_mpi.hpp), which need Boost.MPI. docs/layout.md: the folders.
+#include "core/dual.hpp"
+#include "core/equations_of_motion.hpp"
+#include "core/error.hpp"
+#include "core/hamiltonian.hpp"
+#include "core/integrate.hpp"
+#include "core/phase_space.hpp"
+#include "core/splitting_stepper.hpp"
+#include "core/table.hpp"
+#include "methods/adaptive.hpp"
+#include "methods/catalog.hpp"
+#include "methods/classic_steppers.hpp"
+#include "methods/extrapolation.hpp"
+#include "methods/processing.hpp"
+#include "methods/richardson.hpp"
+#include "methods/time_transformation.hpp"
+#include "analysis/chaos_indicator.hpp"
+#include "analysis/convergence.hpp"
+#include "analysis/order_conditions.hpp"
+#include "analysis/phase_space_measures.hpp"
+#include "analysis/poincare_section.hpp"
+#include "parallel/batch.hpp"
+#include "parallel/ensemble.hpp"

@@ -40,6 +40,7 @@ void stability_study(const study_context& c);
 void kepler_099_study(const study_context& c);
 void long_run_study(const study_context& c);
 void extreme_study(const study_context& c);
+void energy_long_span_study(const study_context& c);
 // The energy error along the run for a few methods on the first Kepler scene.
 void energy_series_study(const std::vector<scene>& scenes, const std::filesystem::path& dir, bool plots);
 

@@ -2,7 +2,7 @@
 // stops with a message that says how to call the dual overload instead.
 #include <cmath>
 
-#include <sympl/dual.hpp>
+#include <sympl/core/dual.hpp>
 
 int main() {
     const sympl::dual<double, 1> x = sympl::dual<double, 1>::variable(2.0, 0);

@@ -9,9 +9,9 @@
 #include <cstdint>
 #include <string>
 
-#include <sympl/error.hpp>
-#include <sympl/order_conditions.hpp>
-#include <sympl/table.hpp>
+#include <sympl/core/error.hpp>
+#include <sympl/analysis/order_conditions.hpp>
+#include <sympl/core/table.hpp>
 
 #include "coefficient_list.hpp"
 

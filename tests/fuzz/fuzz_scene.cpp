@@ -6,8 +6,9 @@
 #include <cstdint>
 #include <string>
 
-#include <sympl/error.hpp>
+#include <sympl/core/error.hpp>
 
+#include "run_plan.hpp"
 #include "scene.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -16,7 +17,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     try {
         const sympl::app::scene s = sympl::app::parse_scene(text, "fuzz.toml");
         const sympl::app::problem p = sympl::app::problem_of(s);
-        sympl::app::check_run_size(s, p, sympl::app::default_max_steps, true);
+        sympl::app::check_run_size(sympl::app::plan_runs(s, p, sympl::app::sweep_use::whole), sympl::app::default_max_steps);
     } catch (const sympl::error&) {
     }
     return 0;

@@ -1,0 +1,193 @@
+#pragma once
+// model(): a system of hamiltonians/ as the program's type-erased problem.
+// Its run() takes any method kind (run_kinds.hpp) over a span: the observed
+// run (energy, trajectory, blow-up, checkpoints), then the timed runs with
+// nothing observed. Included by the systems' translation units only
+// (systems/*.cpp), each instantiating one system.
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <utility>
+
+#include "run_kinds.hpp"
+#include "timing.hpp"
+
+namespace sympl::app {
+
+namespace detail {
+
+template <class Sys, int Dim>
+class runner {
+public:
+    using State = state_of<Dim>;
+
+    runner(Sys sys, std::function<double(const std::vector<double>&)> energy)
+        : sys_(std::move(sys)), energy_(std::move(energy)) {}
+
+    run_result operator()(const method_spec& m, const run_request& rq, double t0, double t_end,
+                          const std::vector<double>& x0) const {
+        run_result r;
+        if (rq.observed) {
+            observed_run(m, rq, t0, t_end, x0, r);
+            if (!r.stable) return r;
+        }
+        const timing t = time_per_call(
+            [&] {
+                State y = to_state<Dim>(x0);
+                no_observer nothing;
+                run_method(run_context<Sys, Dim, no_observer>{sys_, m, rq, t0, t_end, y, nothing});
+            },
+            rq.timing_repeats, rq.min_measurement);
+        r.seconds = t.median;
+        r.seconds_min = t.min;
+        r.seconds_max = t.max;
+        return r;
+    }
+
+private:
+    // The measured run: observed every step for energy, trajectory and blow-up.
+    void observed_run(const method_spec& m, const run_request& rq, double t0, double t_end, const std::vector<double>& x0,
+                      run_result& r) const {
+        const bool energy = rq.energy && energy_;
+        const double e0 = energy ? energy_(x0) : 0;
+        const double scale = e0 != 0 ? std::fabs(e0) : 1;
+        std::size_t step = 0;  // the observer sees t0 (step 0), then every step
+        std::vector<double> buffer;
+        double size0 = 1;
+        for (double v : x0) size0 = std::max(size0, std::fabs(v));
+        const auto observe = [&](const State& x, double t) {
+            if (energy || rq.energy_series_every || rq.trajectory_every) buffer = stacked(x);
+            if (energy) {
+                const double err = std::fabs(energy_(buffer) - e0) / scale;
+                // A finite but exploding run is unstable too: report where, not a huge number.
+                if (err > divergence_limit)
+                    diverged("relative energy error " + format_number(err, 3) + " > " + format_number(divergence_limit),
+                             step, t);
+                r.max_energy_error = std::max(r.max_energy_error, err);
+                if (rq.energy_series_every && step % rq.energy_series_every == 0) r.energy_series.emplace_back(t, err);
+            } else {  // no energy to watch (damped systems): watch the size of the state
+                const double size = std::max(x.q.cwiseAbs().maxCoeff(), x.p.cwiseAbs().maxCoeff());
+                if (size > growth_limit * size0) diverged("|x| grew by more than " + format_number(growth_limit), step, t);
+            }
+            if (rq.trajectory && rq.trajectory_every && step % rq.trajectory_every == 0) {
+                *rq.trajectory << t;
+                for (double v : buffer) *rq.trajectory << ',' << v;
+                *rq.trajectory << '\n';
+            }
+            if (rq.progress && (step & 0x3FFFF) == 0 && step > 0) rq.progress(t);
+            ++step;
+        };
+        if (energy) r.max_energy_error = 0;
+        // A resumed run continues the observer where the checkpoint left it;
+        // a checkpoint carries the observer's maximum so far.
+        run_request with_checkpoints = rq;
+        if (const checkpoint_record* from = rq.checkpoint.resume) {
+            step = from->step + 1;
+            r.max_energy_error = from->max_energy_error;
+        }
+        if (rq.checkpoint.save)
+            with_checkpoints.checkpoint.save = [&](checkpoint_record& record) {
+                record.max_energy_error = r.max_energy_error;
+                rq.checkpoint.save(record);
+            };
+        State x = to_state<Dim>(x0);
+        try {
+            const auto [steps, forces] =
+                run_method(run_context<Sys, Dim, decltype(observe)>{sys_, m, with_checkpoints, t0, t_end, x, observe});
+            r.steps = steps;
+            r.force_evaluations = forces;
+            r.final_state = to_vector(x);
+        } catch (const integration_error& e) {
+            r.stable = false;
+            r.blowup_step = e.step;
+            r.blowup_time = e.time;
+            r.failure = e.what();
+            r.max_energy_error = -1;
+        }
+    }
+
+    [[noreturn]] static void diverged(const std::string& what, std::size_t step, double t) {
+        throw integration_error("the run diverged: " + what + " after step " + std::to_string(step) + " (t = " +
+                                    format_number(t, 17) + ")",
+                                step, t);
+    }
+
+    Sys sys_;
+    std::function<double(const std::vector<double>&)> energy_;
+};
+
+// What only a separable Hamiltonian offers the program: its energy, a
+// long-double reference, ensembles and Poincare sections.
+template <int Dim, class Sys>
+void add_hamiltonian_parts(problem& p, const Sys& sys) {
+    using S = state_of<Dim>;
+    p.energy = [sys](const std::vector<double>& x) { return energy(sys, from_stacked<phase_space<double>>(x)); };
+    p.reference = [sys](double t0, double t_end, double dt, const std::vector<double>& x) {
+        using L = phase_space<long double>;
+        L y = from_stacked<L>(x);
+        splitting_stepper<Sys, L> ss(sys, method("sofroniou_spaletta_10"));
+        integrate_until(ss, y, (long double)t0, (long double)t_end, (long double)dt);
+        return to_vector(y);
+    };
+    p.ensemble = [sys](const ensemble_request& rq, const std::vector<std::vector<double>>& starts) {
+        std::vector<S> states;
+        states.reserve(starts.size());
+        for (const auto& x : starts) states.push_back(from_stacked<S>(x));
+        const ensemble_options o{.t0 = rq.t0, .dt = rq.dt, .steps = rq.steps, .sample_every = rq.sample_every,
+                                 .divergence = rq.divergence, .megno = rq.megno, .threads = rq.threads};
+        std::vector<ensemble_row> rows;
+        rows.reserve(starts.size());
+        for (const auto& r : run_ensemble(sys, *rq.method, states, o))
+            rows.push_back({r.stable, r.blowup_step, r.blowup_time, r.failure, r.max_energy_error, r.megno,
+                            to_vector(r.final_state)});
+        return rows;
+    };
+    p.section = [sys](const table& m, double dt, std::size_t steps, const std::vector<double>& x0) {
+        splitting_stepper<Sys, S> stepper(sys, m);
+        std::vector<std::vector<double>> points;
+        for (const S& c : section_crossings(stepper, from_stacked<S>(x0), dt, steps)) points.push_back(to_vector(c));
+        return points;
+    };
+}
+
+}  // namespace detail
+
+// A 1-D coordinate or momentum, for the default states of 1-D systems.
+inline Eigen::Matrix<double, 1, 1> one_dof(double v) { return Eigen::Matrix<double, 1, 1>(v); }
+
+// The exact flow x(t) = h.exact(x0, t) of a system that has one, as stacked vectors.
+template <class H, class X>
+std::function<std::vector<double>(double)> exact_flow(H h, X x0) {
+    return [h, x0](double t) { return detail::to_vector(h.exact(x0, t)); };
+}
+
+// A system of hamiltonians/ as the program's problem: its default state x0
+// and, when it has one, its exact solution from x0.
+// Dim: the degrees of freedom when fixed (small systems), Eigen::Dynamic otherwise.
+template <int Dim = Eigen::Dynamic, class Sys>
+problem model(Sys sys, std::vector<double> x0, std::function<std::vector<double>(double)> exact = nullptr) {
+    if (Dim != Eigen::Dynamic && x0.size() != std::size_t(2 * Dim))
+        throw invalid_argument("model: a state of " + std::to_string(x0.size()) + " numbers for " + std::to_string(Dim) +
+                               " degrees of freedom");
+    problem p;
+    p.form = detail::form_of<Sys>();
+    p.hamiltonian = p.form.separable_hamiltonian;
+    p.degrees_of_freedom = x0.size() / 2;
+    p.x0 = std::move(x0);
+    p.exact = std::move(exact);
+    if constexpr (separable_hamiltonian<Sys, phase_space<double>::vector>) {
+        detail::add_hamiltonian_parts<Dim>(p, sys);
+    } else {
+        p.reference = [sys](double t0, double t_end, double dt, const std::vector<double>& x) {
+            using State = phase_space<double>;
+            State y = from_stacked<State>(x);
+            auto s4 = make_classic<rk4, State>(sys);
+            integrate_until(s4, y, t0, t_end, dt);
+            return detail::to_vector(y);
+        };
+    }
+    p.run = detail::runner<Sys, Dim>(sys, p.energy);
+    return p;
+}
+
+}  // namespace sympl::app

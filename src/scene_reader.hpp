@@ -1,0 +1,96 @@
+#pragma once
+// Reading a scene's TOML (scene.cpp, scene_ensemble.cpp): every error names
+// the file, line and column and what was expected.
+#include <set>
+#include <string>
+#include <vector>
+
+#include <toml++/toml.h>
+
+#include "format.hpp"
+#include "scene.hpp"
+#include "systems.hpp"
+
+namespace sympl::app {
+
+inline std::string join(const std::vector<std::string>& v) {
+    std::string out;
+    for (const auto& s : v) out += (out.empty() ? "" : ", ") + s;
+    return out;
+}
+
+// Reads typed values and reports where a value is wrong.
+struct reader {
+    std::string source;
+
+    [[noreturn]] void fail(const toml::source_region& where, const std::string& what) const {
+        throw scene_error(source + ":" + std::to_string(where.begin.line) + ":" + std::to_string(where.begin.column) +
+                          ": " + what);
+    }
+    [[noreturn]] void fail(const toml::node& n, const std::string& what) const { fail(n.source(), what); }
+
+    // Only the listed keys: anything else is a typo the user wants to hear about.
+    void only_keys(const toml::table& t, const std::set<std::string>& allowed, const std::string& where) const {
+        for (const auto& [key, node] : t)
+            if (!allowed.count(std::string(key.str()))) {
+                std::vector<std::string> names(allowed.begin(), allowed.end());
+                fail(node, "unknown key '" + std::string(key.str()) + "' in " + where + "; expected one of: " + join(names));
+            }
+    }
+
+    double number(const toml::node& n, const std::string& key) const {
+        if (auto v = n.value<double>(); v && (n.is_floating_point() || n.is_integer())) return *v;
+        fail(n, "'" + key + "' must be a number");
+    }
+    double positive(const toml::node& n, const std::string& key) const {
+        const double v = number(n, key);
+        if (!(v > 0) || !std::isfinite(v))
+            fail(n, "'" + key + "' = " + shortest(v) + "; expected a finite number > 0");
+        return v;
+    }
+    std::string string(const toml::node& n, const std::string& key) const {
+        if (auto v = n.value<std::string>(); v && n.is_string()) return *v;
+        fail(n, "'" + key + "' must be a string");
+    }
+    bool boolean(const toml::node& n, const std::string& key) const {
+        if (auto v = n.value<bool>(); v && n.is_boolean()) return *v;
+        fail(n, "'" + key + "' must be true or false");
+    }
+    std::vector<double> numbers(const toml::node& n, const std::string& key) const {
+        const toml::array* a = n.as_array();
+        if (!a) fail(n, "'" + key + "' must be an array of numbers");
+        std::vector<double> out;
+        for (const auto& e : *a) out.push_back(number(e, key));
+        return out;
+    }
+
+    // dt = 0.01 | [0.1, 0.05] | { from = 0.1, to = 0.001, count = 7 } (geometric)
+    std::vector<double> sweep(const toml::node& n, const std::string& key) const {
+        std::vector<double> out;
+        if (n.is_array()) {
+            for (const auto& e : *n.as_array()) out.push_back(positive(e, key));
+            if (out.empty()) fail(n, "'" + key + "' is an empty array; expected at least one value");
+        } else if (const toml::table* t = n.as_table()) {
+            only_keys(*t, {"from", "to", "count"}, "'" + key + "'");
+            const toml::node* from = t->get("from");
+            const toml::node* to = t->get("to");
+            const toml::node* count = t->get("count");
+            if (!from || !to || !count) fail(n, "'" + key + "' needs from, to and count");
+            const double a = positive(*from, key + ".from"), b = positive(*to, key + ".to");
+            const auto c = count->value<std::int64_t>();
+            if (!c || *c < 1 || *c > 1000) fail(*count, "'" + key + ".count' must be an integer in [1, 1000]");
+            for (std::int64_t i = 0; i < *c; ++i)
+                out.push_back(*c == 1 ? a : a * std::pow(b / a, double(i) / double(*c - 1)));
+        } else {
+            out.push_back(positive(n, key));
+        }
+        std::sort(out.rbegin(), out.rend());
+        return out;
+    }
+};
+
+// [ensemble]: a grid over the system's parameters or a CSV of states.
+ensemble_spec read_ensemble(const reader& r, const toml::node& node, const scene& s, const system_entry& entry,
+                            const toml::array& methods);
+
+}  // namespace sympl::app

@@ -1,0 +1,18 @@
+// The registry entry of the double well (see systems.hpp): its own translation unit.
+#include <sympl/hamiltonians/double_well.hpp>
+
+#include "../model.hpp"
+#include "../systems.hpp"
+
+namespace sympl::app {
+
+system_entry double_well_entry() {
+    return {
+        .name = "double_well",
+        .description = "H = p^2/2 + barrier (q^2 - 1)^2; q0 = 0.5, p0 = 0.3",
+        .parameters = {nonnegative("barrier", 1, "barrier height at q = 0")},
+        .build = [](const parameter_values& v) { return model<1>(hamiltonians::double_well{v.at("barrier")}, {0.5, 0.3}); },
+    };
+}
+
+}  // namespace sympl::app

@@ -1,0 +1,26 @@
+// The registry entry of the FPU beta chain (see systems.hpp): its own translation unit.
+#include <sympl/hamiltonians/fpu_beta.hpp>
+
+#include "../model.hpp"
+#include "../systems.hpp"
+
+#include <cmath>
+
+namespace sympl::app {
+
+system_entry fpu_beta_entry() {
+    return {
+        .name = "fpu_beta",
+        .description = "Fermi, Pasta & Ulam 1955 beta chain, fixed ends; started in its lowest mode, amplitude 1",
+        .parameters = {count("n", 32, 1, "number of masses"), nonnegative("beta", 1, "quartic coupling")},
+        .build = [](const parameter_values& v) {
+            const auto n = std::size_t(v.at("n"));
+            std::vector<double> x0(2 * n, 0.0);
+            const double pi = std::acos(-1.0);
+            for (std::size_t k = 0; k < n; ++k) x0[k] = std::sin(pi * double(k + 1) / double(n + 1));
+            return model(hamiltonians::fpu_beta{v.at("beta")}, x0);
+        },
+    };
+}
+
+}  // namespace sympl::app

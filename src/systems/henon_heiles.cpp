@@ -1,0 +1,23 @@
+// The registry entry of the Henon-Heiles system (see systems.hpp): its own translation unit.
+#include <sympl/hamiltonians/henon_heiles.hpp>
+
+#include "../model.hpp"
+#include "../systems.hpp"
+
+namespace sympl::app {
+
+system_entry henon_heiles_entry() {
+    return {
+        .name = "henon_heiles",
+        .description = "Henon & Heiles 1964; started on the surface of section q1 = 0 at the given energy",
+        .parameters = {of_initial_state({.name = "energy", .value = 1.0 / 6, .low = 0, .high = 1.0 / 6, .low_open = true,
+                                         .meaning = "H; bounded motion up to 1/6"}),
+                       of_initial_state(any("q2", 0.1, "starting q2")), of_initial_state(any("p2", 0, "starting p2"))},
+        .build = [](const parameter_values& v) {
+            return model<2>(hamiltonians::henon_heiles{},
+                            stacked(hamiltonians::henon_heiles::initial_state(v.at("energy"), v.at("q2"), v.at("p2"))));
+        },
+    };
+}
+
+}  // namespace sympl::app

@@ -1,0 +1,40 @@
+// The registry entry of the plane Kepler problem (see systems.hpp): its own translation unit.
+#include <sympl/hamiltonians/kepler.hpp>
+
+#include "../model.hpp"
+#include "../systems.hpp"
+
+#include "../format.hpp"
+
+namespace sympl::app {
+
+system_entry kepler_entry() {
+    return {
+        .name = "kepler",
+        .description = "H = |p|^2/2 - mu/|q| (Hairer, Lubich & Wanner, GNI ch. I.2.3), plane orbit from pericentre; "
+                       "exact for mu = 1",
+        .parameters = {positive("mu", 1, "G M; give mu or scale, not both"),
+                       of_initial_state({.name = "eccentricity", .value = 0.5, .low = 0, .high = 1, .high_open = true,
+                                         .meaning = "orbit eccentricity e"}),
+                       positive("scale", 1,
+                                "length unit L: q -> L q, p -> L p, mu -> mu L^3 (the same orbit in other units)")},
+        .exact = true,
+        .build = [](const parameter_values& v) {
+            const double e = v.at("eccentricity"), L = v.at("scale"), mu = v.at("mu");
+            if (mu != 1 && L != 1)
+                throw invalid_argument("kepler: mu = " + shortest(mu) + " and scale = " + shortest(L) +
+                                       "; expected one of them left at 1");
+            const auto scaled = [L](std::vector<double> x) {
+                for (double& c : x) c *= L;
+                return x;
+            };
+            std::function<std::vector<double>(double)> exact;
+            if (mu == 1) exact = [e, scaled](double t) { return scaled(stacked(hamiltonians::kepler::exact_state(e, t))); };
+            return model<2>(hamiltonians::kepler{mu * L * L * L}, scaled(stacked(hamiltonians::kepler::initial_state(e))),
+                            exact);
+        },
+        .negative_potential = true,
+    };
+}
+
+}  // namespace sympl::app

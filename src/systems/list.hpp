@@ -1,0 +1,44 @@
+#pragma once
+// Every system the program knows, in the order `sympl systems` lists them:
+// one line each (the entry itself is in systems/<name>.cpp).
+#include <vector>
+
+#include "../systems.hpp"
+
+namespace sympl::app {
+
+system_entry harmonic_oscillator_entry();
+system_entry pendulum_entry();
+system_entry kepler_entry();
+system_entry kepler_3d_entry();
+system_entry relativistic_pendulum_entry();
+system_entry henon_heiles_entry();
+system_entry fpu_beta_entry();
+system_entry stiff_fpu_entry();
+system_entry outer_solar_system_entry();
+system_entry two_particle_spring_entry();
+system_entry morse_entry();
+system_entry double_well_entry();
+system_entry toda_entry();
+system_entry damped_oscillator_entry();
+
+inline std::vector<system_entry> every_system_entry() {
+    return {
+        harmonic_oscillator_entry(),
+        pendulum_entry(),
+        kepler_entry(),
+        kepler_3d_entry(),
+        relativistic_pendulum_entry(),
+        henon_heiles_entry(),
+        fpu_beta_entry(),
+        stiff_fpu_entry(),
+        outer_solar_system_entry(),
+        two_particle_spring_entry(),
+        morse_entry(),
+        double_well_entry(),
+        toda_entry(),
+        damped_oscillator_entry(),
+    };
+}
+
+}  // namespace sympl::app

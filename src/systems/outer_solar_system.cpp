@@ -1,0 +1,21 @@
+// The registry entry of the outer solar system (see systems.hpp): its own translation unit.
+#include <sympl/hamiltonians/outer_solar_system.hpp>
+
+#include "../model.hpp"
+#include "../systems.hpp"
+
+namespace sympl::app {
+
+system_entry outer_solar_system_entry() {
+    return {
+        .name = "outer_solar_system",
+        .description = "Sun and the five outer planets (Hairer, Lubich & Wanner, GNI Table 2.2); days, AU",
+        .build = [](const parameter_values&) {
+            const hamiltonians::outer_solar_system h{};
+            return model<hamiltonians::outer_solar_system::dimension>(h, stacked(h.initial_state()));
+        },
+        .negative_potential = true,
+    };
+}
+
+}  // namespace sympl::app

@@ -1,0 +1,20 @@
+// The registry entry of the relativistic pendulum (see systems.hpp): its own translation unit.
+#include <sympl/hamiltonians/relativistic_pendulum.hpp>
+
+#include "../model.hpp"
+#include "../systems.hpp"
+
+namespace sympl::app {
+
+system_entry relativistic_pendulum_entry() {
+    return {
+        .name = "relativistic_pendulum",
+        .description = "H = m c^2 sqrt(1 + p^2/(m c)^2) + k (1 - cos q): a non-quadratic T; q0 = 1.2, p0 = 0.9",
+        .parameters = {positive("mass", 1, "m"), positive("c", 1, "speed of light"), positive("k", 1, "restoring torque")},
+        .build = [](const parameter_values& v) {
+            return model<1>(hamiltonians::relativistic_pendulum{v.at("mass"), v.at("c"), v.at("k")}, {1.2, 0.9});
+        },
+    };
+}
+
+}  // namespace sympl::app

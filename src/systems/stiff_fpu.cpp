@@ -1,0 +1,21 @@
+// The registry entry of the stiff FPU problem (see systems.hpp): its own translation unit.
+#include <sympl/hamiltonians/stiff_fpu.hpp>
+
+#include "../model.hpp"
+#include "../systems.hpp"
+
+namespace sympl::app {
+
+system_entry stiff_fpu_entry() {
+    return {
+        .name = "stiff_fpu",
+        .description = "stiff Fermi-Pasta-Ulam problem (Hairer, Lubich & Wanner, GNI ch. I.5.1) with its initial data",
+        .parameters = {positive("omega", 50, "stiff springs' frequency"), count("pairs", 3, 1, "number of stiff pairs m")},
+        .build = [](const parameter_values& v) {
+            const hamiltonians::stiff_fpu h{v.at("omega")};
+            return model(h, stacked(h.initial_state<double, Eigen::Dynamic>(int(v.at("pairs")))));
+        },
+    };
+}
+
+}  // namespace sympl::app

@@ -1,0 +1,25 @@
+// The registry entry of the periodic Toda lattice (see systems.hpp): its own translation unit.
+#include <sympl/hamiltonians/toda.hpp>
+
+#include "../model.hpp"
+#include "../systems.hpp"
+
+#include <cmath>
+
+namespace sympl::app {
+
+system_entry toda_entry() {
+    return {
+        .name = "toda",
+        .description = "periodic Toda lattice (Toda 1967); q = 0, p_k = cos(2 pi k / n)",
+        .parameters = {count("n", 8, 2, "number of masses")},
+        .build = [](const parameter_values& v) {
+            const auto n = std::size_t(v.at("n"));
+            std::vector<double> x0(2 * n, 0.0);
+            for (std::size_t k = 0; k < n; ++k) x0[n + k] = std::cos(2 * std::acos(-1.0) * double(k) / double(n));
+            return model(hamiltonians::toda{}, x0);
+        },
+    };
+}
+
+}  // namespace sympl::app

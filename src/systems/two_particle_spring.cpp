@@ -1,0 +1,23 @@
+// The registry entry of two particles on a spring (see systems.hpp): its own translation unit.
+#include <sympl/hamiltonians/two_particle_spring.hpp>
+
+#include "../model.hpp"
+#include "../systems.hpp"
+
+namespace sympl::app {
+
+system_entry two_particle_spring_entry() {
+    return {
+        .name = "two_particle_spring",
+        .description = "two particles joined by a spring (Gould & Tobochnik eq. 3.72); exact",
+        .parameters = {positive("mass", 1, "each particle's mass"), positive("stiffness", 1, "spring constant k")},
+        .exact = true,
+        .build = [](const parameter_values& v) {
+            const hamiltonians::two_particle_spring h{v.at("mass"), v.at("stiffness")};
+            return model<4>(h, stacked(hamiltonians::two_particle_spring::initial_state()),
+                            exact_flow(h, hamiltonians::two_particle_spring::initial_state()));
+        },
+    };
+}
+
+}  // namespace sympl::app

@@ -1,0 +1,113 @@
+// Checkpoint files: exact round trip, and every kind of bad file refused.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <sympl/core/error.hpp>
+
+#include "checkpoint.hpp"
+#include "scratch_directory.hpp"
+
+using namespace sympl::app;
+namespace fs = std::filesystem;
+
+namespace {
+checkpoint_record sample() {
+    checkpoint_record r;
+    r.scene_hash = fnv1a_hex("name = \"x\"\n");
+    r.method = "compensated(blanes_moan_s6)";
+    r.dt = 0.1;  // not a binary fraction: must come back to the last bit
+    r.step = 123456789;
+    r.state = {std::nextafter(1.0, 2.0), -0.0, 1e-310, -7.25};
+    r.memory.force = {0.3, -0.7};
+    r.memory.velocity = {1.0 / 3, 2.0 / 3};
+    r.memory.q_error = {1e-17, -3e-18};
+    r.memory.p_error = {0, 5e-324};
+    r.memory.force_fresh = true;
+    r.memory.force_evaluations = 987654321012ull;
+    r.memory.velocity_evaluations = 42;
+    r.max_energy_error = 4.0123456789012345e-9;
+    r.trajectory_bytes = 1113699;
+    return r;
+}
+std::string read(const fs::path& f) {
+    std::ifstream in(f, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+void write(const fs::path& f, const std::string& text) { std::ofstream(f, std::ios::binary) << text; }
+std::string refusal(const fs::path& f, const checkpoint_record& r, const std::string& hash, double dt) {
+    try {
+        read_checkpoint(f, hash, r.method, dt);
+    } catch (const sympl::error& e) {
+        return e.what();
+    }
+    return "accepted";
+}
+}  // namespace
+
+TEST_CASE("checkpoint: every number comes back to the last bit") {
+    const fs::path dir = scratch_directory("sympl_test_checkpoint");
+    fs::create_directories(dir);
+    const checkpoint_record r = sample();
+    write_checkpoint(dir / "c", r);
+    const checkpoint_record back = read_checkpoint(dir / "c", r.scene_hash, r.method, r.dt);
+    CHECK(back.step == r.step);
+    CHECK(back.state == r.state);
+    CHECK(std::signbit(back.state[1]));
+    CHECK(back.memory.force == r.memory.force);
+    CHECK(back.memory.velocity == r.memory.velocity);
+    CHECK(back.memory.q_error == r.memory.q_error);
+    CHECK(back.memory.p_error == r.memory.p_error);
+    CHECK(back.memory.force_fresh);
+    CHECK_FALSE(back.memory.velocity_fresh);
+    CHECK(back.memory.force_evaluations == r.memory.force_evaluations);
+    CHECK(back.memory.velocity_evaluations == r.memory.velocity_evaluations);
+    CHECK(back.max_energy_error == r.max_energy_error);
+    CHECK(back.trajectory_bytes == r.trajectory_bytes);
+    CHECK_FALSE(fs::exists(dir / ("c.part-" + std::to_string(::getpid()))));  // no temporary left
+    fs::remove_all(dir);
+}
+
+TEST_CASE("checkpoint: truncated, corrupted, foreign or mismatched files are refused with the reason") {
+    const fs::path dir = scratch_directory("sympl_test_checkpoint_bad");
+    fs::create_directories(dir);
+    const checkpoint_record r = sample();
+    write_checkpoint(dir / "c", r);
+    const std::string good = read(dir / "c");
+    const auto refused_for = [&](const std::string& text, const std::string& hash, double dt) {
+        write(dir / "bad", text);
+        return refusal(dir / "bad", r, hash, dt);
+    };
+    const auto says = [](const std::string& message, const std::string& part) {
+        CAPTURE(message);
+        CHECK(message.find(part) != std::string::npos);
+        CHECK(message.find("not resumed from") != std::string::npos);
+    };
+    says(refused_for(good.substr(0, good.size() / 2), r.scene_hash, r.dt), "truncated");
+    says(refused_for(good.substr(0, good.size() - 3), r.scene_hash, r.dt), "corrupted");
+    std::string flipped = good;
+    flipped[flipped.find("state") + 12] ^= 1;  // one bit of a state value
+    says(refused_for(flipped, r.scene_hash, r.dt), "checksum mismatch");
+    says(refused_for("", r.scene_hash, r.dt), "is not a sympl checkpoint");
+    says(refused_for("sympl-checkpoint 99\n" + good.substr(good.find('\n') + 1), r.scene_hash, r.dt),
+         "another format version");
+    says(refused_for(good, fnv1a_hex("another scene"), r.dt), "belongs to another scene");
+    says(refused_for(good, r.scene_hash, 0.2), "another dt");
+    write(dir / "bad", good);
+    checkpoint_record other = r;
+    other.method = "rk4";
+    try {
+        read_checkpoint(dir / "bad", r.scene_hash, "rk4", r.dt);
+        FAIL("a checkpoint of another method was accepted");
+    } catch (const sympl::error& e) {
+        CHECK(std::string(e.what()).find("is of method 'compensated(blanes_moan_s6)', not 'rk4'") != std::string::npos);
+    }
+    says(refusal(dir / "missing", r, r.scene_hash, r.dt), "cannot be opened");
+    fs::remove_all(dir);
+}

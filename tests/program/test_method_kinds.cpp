@@ -1,0 +1,99 @@
+// The method-kind registry: how names resolve and what each kind needs.
+#include <doctest/doctest.h>
+
+#include <string>
+
+#include <sympl/methods/catalog.hpp>
+
+#include "method_kinds.hpp"
+
+using namespace sympl::app;
+
+TEST_CASE("method kinds: a name resolves to its kind, a scene's table comes first") {
+    CHECK(resolve_method("rk4", {})->kind == method_kind::classic);
+    CHECK(resolve_method("odeint_rk4", {})->kind == method_kind::odeint_rk4);
+    CHECK(resolve_method("odeint_dopri5", {})->kind == method_kind::odeint_dopri5);
+    const auto table = resolve_method("yoshida_6", {});
+    REQUIRE(table);
+    CHECK(table->kind == method_kind::table);
+    CHECK(table->coefficients->order() == 6);
+    CHECK_FALSE(resolve_method("rk5", {}));
+    for (const auto& name : sympl::catalog_names()) CHECK(resolve_method(name, {}));
+    for (const auto& name : method_names_beside_tables()) CHECK(resolve_method(name, {}));
+    CHECK(entry_of(method_kind::odeint_dopri5).adaptive);
+    CHECK_FALSE(entry_of(method_kind::odeint_rk4).adaptive);
+}
+
+TEST_CASE("method kinds: force-gradient tables and processed methods by name, and what they refuse") {
+    const auto fg = resolve_method("chin_4a", {});
+    REQUIRE(fg);
+    CHECK(fg->kind == method_kind::table);
+    CHECK(fg->coefficients->has_force_gradient());
+    CHECK(requirement_of(*fg) == needs::differentiable_force);
+    CHECK(why_not_resumable(*fg).empty());
+    const auto processed = resolve_method("bcm_2006_p8", {});
+    REQUIRE(processed);
+    CHECK(processed->kind == method_kind::processed);
+    CHECK(processed->processing->order == 8);
+    CHECK(requirement_of(*processed) == needs::separable_hamiltonian);
+    CHECK(why_not_resumable(*processed).find("processed state") != std::string::npos);
+    CHECK(resolve_method("compensated(chin_4a)", {})->compensated);
+    CHECK_FALSE(resolve_method("compensated(bcm_2006_p8)", {}));
+    CHECK_FALSE(resolve_method("logh(bcm_2006_p8)", {}));
+    CHECK_THROWS_WITH_AS(resolve_method("logh(chin_4a)", {}), doctest::Contains("'chin_4a' has force-gradient kicks"),
+                         sympl::invalid_argument);
+    CHECK_THROWS_WITH_AS(resolve_method("extrapolated(bcm_2006_p8, 2)", {}),
+                         doctest::Contains("is not a table or logh(<table>)"), sympl::invalid_argument);
+    // A Hamiltonian without the force's derivative: the reason, in the registry's words.
+    system_form plain{true, false, false};
+    CHECK(why_not(*fg, plain) ==
+          "method 'chin_4a' needs the force's derivative J_F(q) u (force-gradient kicks); this system gives neither "
+          "force_derivative nor a potential templated on its scalar (use a table without force-gradient kicks)");
+    plain.differentiable_force = true;
+    CHECK(why_not(*fg, plain).empty());
+    CHECK(why_not(*fg, system_form{false, true, true}).find("needs a separable Hamiltonian") != std::string::npos);
+}
+
+TEST_CASE("method kinds: what each needs, and the reason when a system lacks it") {
+    const system_form hamiltonian{true, false, false}, damped{false, true, true};
+    const auto m = [](const char* name) { return *resolve_method(name, {}); };
+    CHECK(why_not(m("leapfrog_kdk"), hamiltonian).empty());
+    CHECK(why_not(m("leapfrog_kdk"), damped) ==
+          "method 'leapfrog_kdk' needs a separable Hamiltonian H = T(p) + V(q); this system is not Hamiltonian (use a "
+          "classic method)");
+    CHECK(why_not(m("leapfrog_two_step"), hamiltonian).find("needs Newton's form") != std::string::npos);
+    CHECK(why_not(m("leapfrog_two_step"), damped).empty());
+    CHECK(why_not(m("damped_leapfrog"), hamiltonian).find("F(x, t) - G(v)") != std::string::npos);
+    for (const char* any : {"euler", "rk4", "velocity_verlet", "predictor_corrector", "odeint_rk4", "odeint_dopri5"}) {
+        CHECK(why_not(m(any), hamiltonian).empty());
+        CHECK(why_not(m(any), damped).empty());
+    }
+}
+
+TEST_CASE("method kinds: extrapolated(<table or logh(table)>, k), and what is wrong with a malformed one") {
+    const auto plain = resolve_method("extrapolated(leapfrog_kdk, 4)", {});
+    REQUIRE(plain);
+    CHECK(plain->kind == method_kind::table);
+    CHECK(plain->extrapolation_columns == 4);
+    const auto logh = resolve_method("extrapolated( logh(leapfrog_dkd) , 6 )", {});
+    REQUIRE(logh);
+    CHECK(logh->kind == method_kind::logh);
+    CHECK(logh->extrapolation_columns == 6);
+    CHECK(logh->coefficients->name() == "leapfrog_dkd");
+    const auto fails = [](const char* name, const char* why) {
+        CAPTURE(name);
+        CHECK_THROWS_WITH_AS(resolve_method(name, {}), doctest::Contains(why), sympl::invalid_argument);
+    };
+    fails("extrapolated(ruth_3, 3)", "'ruth_3' is not symmetric");
+    fails("extrapolated(leapfrog_kdk, 0)", "column count '0'");
+    fails("extrapolated(leapfrog_kdk, 13)", "column count '13'");
+    fails("extrapolated(leapfrog_kdk, 1e300)", "column count '1e300'");
+    fails("extrapolated(leapfrog_kdk, nan)", "column count 'nan'");
+    fails("extrapolated(leapfrog_kdk)", "no column count");
+    fails("extrapolated(rk4, 3)", "'rk4' is not a table or logh(<table>)");
+    fails("extrapolated(extrapolated(leapfrog_kdk, 2), 3)", "is not a table or logh(<table>)");
+    std::map<std::string, sympl::table> mine{
+        {"mine", sympl::table("mine", {0.5L, 0.5L}, {1.0L, 0.0L})}};  // leapfrog without a claimed order
+    CHECK_THROWS_WITH_AS(resolve_method("extrapolated(mine, 3)", mine), doctest::Contains("claims order 0"),
+                         sympl::invalid_argument);
+}

@@ -1,0 +1,201 @@
+// Scene files: what they may say, and errors that name file, line and column.
+#include <doctest/doctest.h>
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "run_plan.hpp"
+#include "scene.hpp"
+
+using namespace sympl::app;
+
+namespace {
+const std::string good = R"(name = "kepler"
+system = "kepler"
+parameters = {eccentricity = 0.5}
+methods = ["leapfrog_kdk", "mine", "rk4", "odeint_dopri5"]
+dt = {from = 0.1, to = 0.001, count = 3}
+t_end = 6.283185307179586
+[output]
+trajectory_every = 10
+[[table]]
+name = "mine"
+kick = [0.5, 0.5]
+drift = [1.0, 0.0]
+order = 2
+)";
+
+std::string error_of(const std::string& text) {
+    try {
+        parse_scene(text, "scene.toml");
+    } catch (const scene_error& e) {
+        return e.what();
+    }
+    return "no error";
+}
+}  // namespace
+
+TEST_CASE("scene: a valid scene with a sweep, an inline table and outputs") {
+    const scene s = parse_scene(good, "scene.toml");
+    CHECK(s.system == "kepler");
+    CHECK(s.parameters.at("eccentricity") == 0.5);
+    REQUIRE(s.methods.size() == 4);
+    CHECK(s.methods[1].kind == method_kind::table);
+    CHECK(s.methods[1].coefficients->stages() >= 1);
+    CHECK(s.methods[2].kind == method_kind::classic);
+    CHECK(s.methods[3].kind == method_kind::odeint_dopri5);
+    REQUIRE(s.dt.size() == 3);
+    CHECK(s.dt[0] == doctest::Approx(0.1));
+    CHECK(s.dt[1] == doctest::Approx(0.01));
+    CHECK(s.dt[2] == doctest::Approx(0.001));
+    CHECK(s.output.trajectory_every == 10);
+    CHECK_FALSE(s.output.final_state);
+}
+
+TEST_CASE("scene: errors name the file, line and column and what was expected") {
+    const auto replace = [](std::string text, const std::string& from, const std::string& to) {
+        text.replace(text.find(from), from.size(), to);
+        return text;
+    };
+    CHECK(error_of(replace(good, "t_end = 6.283185307179586", "t_end = 6.2\nstep = 3")) ==
+          "scene.toml:7:8: unknown key 'step' in the scene; expected one of: checkpoint, dt, ensemble, initial, methods, name, "
+          "output, parameters, quick, system, t0, t_end, table, tolerances");
+    CHECK(error_of(replace(good, "\"kepler\"\nparameters", "\"kepplr\"\nparameters")).rfind("scene.toml:2:10: unknown system 'kepplr'", 0) == 0);
+    CHECK(error_of(replace(good, "\"rk4\"", "\"rk5\"")).rfind("scene.toml:4:36: unknown method 'rk5'", 0) == 0);
+    CHECK(error_of(replace(good, "trajectory_every = 10", "trajectory_every = \"often\"")) ==
+          "scene.toml:8:20: 'output.trajectory_every' must be an integer >= 1 (every k-th step; leave it out for no "
+          "trajectory)");
+    // 0 once meant "no trajectory" silently; leaving the key out says that.
+    CHECK(error_of(replace(good, "trajectory_every = 10", "trajectory_every = 0")).rfind(
+              "scene.toml:8:20: 'output.trajectory_every' must be an integer >= 1", 0) == 0);
+    CHECK(error_of(replace(good, "dt = {from = 0.1, to = 0.001, count = 3}", "dt = -0.1")) ==
+          "scene.toml:5:6: 'dt' = -0.1; expected a finite number > 0");
+    CHECK(error_of(replace(good, "t_end = 6.283185307179586", "t0 = 1.0\nt_end = 0.5")) ==
+          "scene.toml:7:9: t_end = 0.5 is not after t0 = 1; expected t_end > t0");
+    CHECK(error_of(replace(good, "system = \"kepler\"\n", "")).rfind("scene.toml:1:1: missing 'system'", 0) == 0);
+    CHECK(error_of(replace(good, "eccentricity = 0.5", "eccentricty = 0.5")).rfind(
+              "scene.toml:3:29: unknown key 'eccentricty' in [parameters] of kepler", 0) == 0);
+    CHECK(error_of(replace(good, "drift = [1.0, 0.0]", "drift = [1.0, 0.5]")) ==
+          "scene.toml:9:1: table 'mine': sum(drift) = 1.5; expected 1 within 1e-14");
+    CHECK(error_of("system = [").rfind("scene.toml:1:11: not valid TOML", 0) == 0);
+    CHECK_THROWS_WITH_AS(load_scene("/nonexistent/scene.toml"), doctest::Contains("cannot open"), scene_error);
+}
+
+TEST_CASE("scene: the built-in set parses, quick and full") {
+    CHECK(default_scenes(true).size() == 12);
+    CHECK(default_scenes(false).size() == 12);
+    for (const scene& s : default_scenes(true)) {
+        CAPTURE(s.name);
+        CHECK(s.dt.size() >= (s.ensemble ? 1 : 3));  // an ensemble runs one step size
+        CHECK(s.t_end > s.t0);
+    }
+}
+
+TEST_CASE("scene: an [ensemble] is read in the file's axis order, and its errors are located") {
+    const std::string base = "system = \"henon_heiles\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.1\nt_end = 10\n[ensemble]\n";
+    const scene s = parse_scene(base + "grid = {q2 = {from = -0.4, to = 0.6, count = 3}, p2 = {from = 0, to = 1, count = 2}}\n"
+                                       "indicator = \"megno\"\n", "e.toml");
+    REQUIRE(s.ensemble);
+    REQUIRE(s.ensemble->grid.size() == 2);
+    CHECK(s.ensemble->grid[0].name == "q2");  // toml++ sorts keys: the order is the file's
+    CHECK(s.ensemble->grid[0].value(1) == doctest::Approx(0.1));
+    CHECK(s.ensemble->size() == 6);
+    CHECK(s.ensemble->megno);
+    const auto error_of = [&](const std::string& text) {
+        try {
+            parse_scene(text, "e.toml");
+        } catch (const scene_error& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    CHECK(error_of(base + "grid = {mass = {from = 0, to = 1, count = 2}}\n").find("e.toml:6:16: unknown key 'mass' in ensemble.grid of henon_heiles; expected one of: energy, p2, q2") == 0);
+    CHECK(error_of(base + "grid = {q2 = {from = 0, to = 1, count = 0}}\n").find("'q2.count' must be an integer in [1, 1000000]") !=
+          std::string::npos);
+    CHECK(error_of(base + "grid = {q2 = {from = 0, to = 1, count = 1000000}, p2 = {from = 0, to = 1, count = 1000}}\n")
+              .find("the grid has 1e+09 points; expected at most 1e+07") != std::string::npos);
+    std::string with_rk4 = base;
+    with_rk4.replace(with_rk4.find("leapfrog_kdk"), 12, "rk4");
+    CHECK(error_of(with_rk4 + "grid = {q2 = {from = 0, to = 1, count = 2}}\n")
+              .find("an ensemble runs one splitting table") != std::string::npos);
+    std::string with_gradient = base;
+    with_gradient.replace(with_gradient.find("leapfrog_kdk"), 12, "chin_4a");
+    CHECK(error_of(with_gradient + "grid = {q2 = {from = 0, to = 1, count = 2}}\n")
+              .find("an ensemble runs plain kick-drift tables; 'chin_4a' has force-gradient kicks") != std::string::npos);
+    CHECK(error_of(base + "states = \"x.csv\"\ngrid = {q2 = {from = 0, to = 1, count = 2}}\n").find("either grid") !=
+          std::string::npos);
+}
+
+TEST_CASE("scene: files too large are refused before they are read, NUL bytes named with their line") {
+    CHECK_THROWS_WITH_AS(load_scene("/dev/zero"), doctest::Contains("larger than 1048576 bytes"), scene_error);
+    const std::string path = "/tmp/sympl_test_nul_" + std::to_string(::getpid()) + ".toml";
+    {
+        std::ofstream f(path, std::ios::binary);
+        f << "system = \"kepler\"\nname = \"a";
+        f.put('\0');
+        f << "\"\n";
+    }
+    CHECK_THROWS_WITH_AS(load_scene(path), doctest::Contains(":2: a NUL byte"), scene_error);
+    std::remove(path.c_str());
+}
+
+TEST_CASE("scene: runs beyond the step limit are refused up front with the figures, and the limit can be raised") {
+    const scene s = parse_scene("system = \"harmonic_oscillator\"\nmethods = [\"leapfrog_kdk\", "
+                                "\"extrapolated(leapfrog_kdk, 4)\"]\ndt = [0.1, 0.001]\nt_end = 1000\n",
+                                "long.toml");
+    const problem p = problem_of(s);
+    // sympl run uses the first dt: 1e4 steps, extrapolated 1e5 inner steps.
+    CHECK_NOTHROW(check_run_size(plan_runs(s, p, sweep_use::first), 1e5));
+    CHECK_THROWS_WITH_AS(check_run_size(plan_runs(s, p, sweep_use::first), 99999),
+                         doctest::Contains("method 'extrapolated(leapfrog_kdk, 4)' at dt = 0.1 over t = 0 .. 1000 takes "
+                                           "1e+05 steps; the limit is 1e+05 (raise it with --max-steps)"),
+                         scene_error);
+    // The report runs the whole sweep: 1e6 steps of leapfrog at dt = 0.001.
+    CHECK_THROWS_WITH_AS(check_run_size(plan_runs(s, p, sweep_use::whole), 1e5), doctest::Contains("'leapfrog_kdk' at dt = 0.001"), scene_error);
+    // Without an exact solution the reference counts: 1.5 runs at a quarter of the finest step.
+    const scene pendulum = parse_scene("system = \"pendulum\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.1\nt_end = 1000\n",
+                                       "pendulum.toml");
+    CHECK_THROWS_WITH_AS(check_run_size(plan_runs(pendulum, problem_of(pendulum), sweep_use::first), 5e4),
+                         doctest::Contains("the reference (its dt is a quarter of the finest step, 0.1) at dt = 0.025"),
+                         scene_error);
+    CHECK_NOTHROW(check_run_size(plan_runs(pendulum, problem_of(pendulum), sweep_use::first), 6e4));
+}
+
+TEST_CASE("scene: an initial state of infinite energy is refused, not reported as energy error 0") {
+    const auto error_of_initial = [](const std::string& system, const std::string& initial) {
+        try {
+            problem_of(parse_scene("system = \"" + system + "\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.1\nt_end = 1\n" +
+                                       "initial = " + initial + "\n",
+                                   "x.toml"));
+        } catch (const scene_error& e) {
+            return std::string(e.what());
+        }
+        return std::string("accepted");
+    };
+    CHECK(error_of_initial("harmonic_oscillator", "{q = [1e308], p = [1e308]}") ==
+          "x.toml: the initial state of harmonic_oscillator has energy H = inf; expected a state of finite energy");
+    CHECK(error_of_initial("kepler", "{q = [0, 0], p = [0, 1]}") ==
+          "x.toml: the initial state of kepler has energy H = -inf; expected a state of finite energy");
+    CHECK(error_of_initial("kepler", "{q = [1, 0], p = [0, 1]}") == "accepted");
+}
+
+TEST_CASE("scene: checkpoints are for methods that resume bit for bit, others are refused where they are named") {
+    const std::string head = "system = \"kepler\"\ndt = 0.1\nt_end = 1\ncheckpoint = {every_steps = 100, file = \"c\"}\n";
+    const scene s = parse_scene(head + "methods = [\"leapfrog_kdk\", \"compensated(yoshida_6)\", \"rk4\"]\n", "c.toml");
+    CHECK(s.checkpoint.every_steps == 100);
+    CHECK(s.methods[1].compensated);
+    for (const std::string m : {"velocity_verlet", "logh(leapfrog_dkd)", "odeint_rk4", "extrapolated(leapfrog_kdk, 3)"}) {
+        CAPTURE(m);
+        const std::string e = error_of(head + "methods = [\"rk4\", \"" + m + "\"]\n");
+        CAPTURE(e);
+        CHECK(e.rfind("scene.toml:5:19: method '" + m + "' cannot be checkpointed", 0) == 0);
+    }
+    CHECK(error_of("system = \"kepler\"\ndt = 0.1\nt_end = 1\nmethods = [\"rk4\"]\ncheckpoint = {every_steps = 0, file = \"c\"}\n") ==
+          "scene.toml:5:29: 'checkpoint.every_steps' must be an integer in [1, 1e15]");
+    // A different scene text is a different scene for its checkpoints.
+    CHECK(parse_scene(head + "methods = [\"rk4\"]\n", "a.toml").text_hash !=
+          parse_scene(head + "methods = [\"rk4\"] \n", "a.toml").text_hash);
+}

@@ -1,0 +1,115 @@
+// The system registry: every entry builds with its defaults, keeps its
+// promises (exact solution, energy) and agrees with what actually runs.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <string>
+
+#include <sympl/methods/catalog.hpp>
+
+#include "method_kinds.hpp"
+#include "systems.hpp"
+
+using namespace sympl::app;
+
+namespace {
+// One method of each kind and every classic stepper.
+std::vector<method_spec> every_method() {
+    std::vector<method_spec> all;
+    for (const std::string& name : method_names_beside_tables()) all.push_back(*resolve_method(name, {}));
+    all.push_back(*resolve_method("blanes_moan_s6", {}));
+    all.push_back(*resolve_method("mine", {{"mine", sympl::method("leapfrog_kdk")}}));
+    all.push_back(*resolve_method("logh(leapfrog_dkd)", {}));
+    all.push_back(*resolve_method("extrapolated(leapfrog_kdk, 3)", {}));
+    all.push_back(*resolve_method("extrapolated(logh(leapfrog_dkd), 3)", {}));
+    return all;
+}
+}  // namespace
+
+TEST_CASE("systems: every system runs every method the registry says it can, and refuses every other") {
+    const auto methods = every_method();
+    // 10 classic names, 4 Odeint kinds, the force-gradient tables and processed methods, a catalog
+    // and an inline table, a logh, two extrapolated
+    CHECK(methods.size() == 19 + sympl::force_gradient_catalog().size() + sympl::processed_catalog().size());
+    for (const system_entry& entry : systems()) {
+        const problem p = make_problem(entry.name, {}, {}, {}, "test");
+        for (const method_spec& m : methods) {
+            CAPTURE(entry.name);
+            CAPTURE(m.name);
+            const std::string why = why_not(m, p.form);
+            run_request rq;
+            rq.dt = 1e-3;
+            rq.tolerance = 1e-6;
+            rq.timing_repeats = 0;
+            rq.energy = p.hamiltonian;
+            bool ran = false;
+            std::string refusal;
+            try {
+                const run_result r = p.run(m, rq, 0.0, 0.01, p.x0);
+                ran = true;
+                CHECK(r.stable);
+                const bool fixed_step = steps_in_physical_time(m);
+                CHECK(r.steps >= (fixed_step ? 10u : 1u));  // logh: dt is a fictitious step
+                CHECK(r.final_state.size() == p.x0.size());
+            } catch (const sympl::invalid_argument& e) {
+                refusal = e.what();
+            }
+            CHECK(ran == why.empty());
+            // The same words as the registry's; LogH on a system with V >= 0 is refused at its first
+            // sub-step, where T + p_t = -V or V itself is not of the sign it needs.
+            if (!ran && m.kind == method_kind::logh && p.form.separable_hamiltonian)
+                CHECK((refusal.find("logh: V(q) = ") == 0 || refusal.find("logh: T(p) + p_t = ") == 0));
+            else if (!ran)
+                CHECK(refusal == why);
+        }
+    }
+}
+
+TEST_CASE("systems: defaults lie in their ranges and a value outside one is refused with the range") {
+    for (const system_entry& entry : systems()) {
+        CAPTURE(entry.name);
+        CHECK_FALSE(entry.description.empty());
+        for (const parameter& q : entry.parameters) {
+            CAPTURE(q.name);
+            CHECK(q.accepts(q.value));
+            CHECK_FALSE(q.accepts(std::nan("")));
+            CHECK_FALSE(q.meaning.empty());
+        }
+        const problem p = make_problem(entry.name, {}, {}, {}, "test");
+        CHECK(p.x0.size() == 2 * p.degrees_of_freedom);
+        CHECK(bool(p.exact) == entry.exact);
+        CHECK(p.hamiltonian == bool(p.energy));
+    }
+    CHECK_THROWS_WITH_AS(make_problem("pendulum", {{"mass", -1}}, {}, {}, "s.toml"),
+                         "s.toml: pendulum mass = -1; expected a finite number > 0", sympl::invalid_argument);
+    CHECK_THROWS_WITH_AS(make_problem("fpu_beta", {{"n", 2.5}}, {}, {}, "s.toml"),
+                         "s.toml: fpu_beta n = 2.5; expected an integer in [1, 1000000]", sympl::invalid_argument);
+    CHECK_THROWS_WITH_AS(make_problem("kepler", {{"eccentricity", 1}}, {}, {}, "s.toml"),
+                         "s.toml: kepler eccentricity = 1; expected a finite number in [0, 1)", sympl::invalid_argument);
+    CHECK_THROWS_WITH_AS(make_problem("kepler", {{"mu", 2}, {"scale", 3}}, {}, {}, "s.toml"),
+                         "s.toml: kepler: mu = 2 and scale = 3; expected one of them left at 1", sympl::invalid_argument);
+    CHECK_THROWS_WITH_AS(make_problem("pendulum", {}, {1, 2}, {0, 0}, "s.toml"),
+                         "s.toml: initial q has 2 and p 2 values; pendulum expects 1 each", sympl::invalid_argument);
+}
+
+TEST_CASE("systems: an exact solution is the flow: a 10th-order run at a small step lands on it") {
+    for (const system_entry& entry : systems()) {
+        if (!entry.exact) continue;
+        CAPTURE(entry.name);
+        const problem p = make_problem(entry.name, {}, {}, {}, "test");
+        CHECK(relative_difference(p.exact(0), p.x0) < 1e-15);
+        const method_spec m = *resolve_method(p.form.separable_hamiltonian ? "sofroniou_spaletta_10" : "rk4", {});
+        run_request rq;
+        rq.dt = p.form.separable_hamiltonian ? 0.01 : 0.001;
+        rq.timing_repeats = 0;
+        const run_result r = p.run(m, rq, 0.0, 2.0, p.x0);
+        CHECK(relative_difference(r.final_state, p.exact(2.0)) < 1e-10);
+    }
+}
+
+TEST_CASE("systems: a scene's own initial state replaces the default and drops the exact solution") {
+    const problem p = make_problem("harmonic_oscillator", {{"omega", 2}}, {0.5}, {0.25}, "test");
+    CHECK(p.x0 == std::vector<double>{0.5, 0.25});
+    CHECK_FALSE(p.exact);
+    CHECK(p.energy(p.x0) == doctest::Approx(0.25 * 0.25 / 2 + 4 * 0.25 / 2));
+}
