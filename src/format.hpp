@@ -37,4 +37,12 @@ inline std::string scientific(double v, int digits) {
     return s.str();
 }
 
+// "[i/n] ", a progress line's counter (built with a stream: GCC 12 warns
+// falsely on "[" + std::to_string(i) at -O3).
+inline std::string counter(std::size_t i, std::size_t n) {
+    std::ostringstream text;
+    text << '[' << i << '/' << n << "] ";
+    return text.str();
+}
+
 }  // namespace sympl::app

@@ -113,7 +113,7 @@ void run_report(const std::vector<scene>& scenes, const report_options& options,
     std::map<const scene*, reference_state> references;
     if (writer)
         for (std::size_t k = 0; k < scenes.size(); ++k) {
-            bar.show("[" + std::to_string(k + 1) + "/" + std::to_string(scenes.size()) + "] " + scenes[k].name + ": reference");
+            bar.show(counter(k + 1, scenes.size()) + scenes[k].name + ": reference");
             references[&scenes[k]] = make_reference(scenes[k], problems[k], plans[k], outputs->directory() / "cache");
         }
     std::vector<report_row> rows = rows_of(plans, problems);

@@ -88,8 +88,8 @@ void measure_rows(std::vector<report_row>& rows, const row_filter& mine, const p
         if (!mine(i)) continue;
         report_row& r = rows[i];
         const scene& s = *r.s;
-        const std::string head = "[" + std::to_string(i + 1) + "/" + std::to_string(rows.size()) + "] " + s.name + ": " +
-                                 r.method().name + " " + format_number(r.run->setting());
+        const std::string head =
+            counter(i + 1, rows.size()) + s.name + ": " + r.method().name + " " + format_number(r.run->setting());
         bar.show(head);
         run_request rq = r.run->request();
         rq.energy = r.p->hamiltonian;

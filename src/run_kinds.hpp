@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <type_traits>
 #include <utility>
@@ -132,11 +133,19 @@ struct run_context {
     Observer& observe;
 
     // Any sympl stepper over the span; checkpointed when the request asks.
-    template <class Stepper>
+    // Steppers a checkpoint cannot resume (Resumable false: extrapolated,
+    // processed, classic with history) are refused by the scene before they
+    // get here, and their checkpointed driver is not compiled.
+    template <bool Resumable = true, class Stepper>
     steps_and_forces drive(Stepper stepper) const {
         run_summary s;
         if constexpr (observed) {
-            if (rq.checkpoint.every_steps) return checkpointed(*this, stepper);
+            if (rq.checkpoint.every_steps) {
+                if constexpr (Resumable)
+                    return checkpointed(*this, stepper);
+                else
+                    throw invalid_argument(why_not_resumable(m));
+            }
             s = integrate_until(stepper, x, t0, t_end, rq.dt, observe);
         } else {
             s = integrate_until(stepper, x, t0, t_end, rq.dt);
@@ -193,7 +202,7 @@ struct run_kind<method_kind::table> {
     static steps_and_forces run(const C& c) {
         splitting_stepper<typename C::system, typename C::State> stepper(c.sys, *c.m.coefficients, {c.m.compensated});
         if (c.m.extrapolation_columns > 0)
-            return c.drive(extrapolation_stepper(std::move(stepper), c.m.extrapolation_columns));
+            return c.template drive<false>(extrapolation_stepper(std::move(stepper), c.m.extrapolation_columns));
         return c.drive(std::move(stepper));
     }
 };
@@ -202,7 +211,7 @@ template <>
 struct run_kind<method_kind::processed> {
     template <class C>
     static steps_and_forces run(const C& c) {
-        return c.drive(processed_stepper<typename C::system, typename C::State>(c.sys, *c.m.processing));
+        return c.template drive<false>(processed_stepper<typename C::system, typename C::State>(c.sys, *c.m.processing));
     }
 };
 
@@ -245,88 +254,141 @@ struct run_kind<method_kind::classic> {
     static steps_and_forces run(const C& c) {
         return [&]<std::size_t... I>(std::index_sequence<I...>) {
             steps_and_forces done{};
-            ((c.m.classic == I ? void(done = one(std::get<I>(classic_methods), c)) : void()), ...);
+            ((c.m.classic == I ? void(done = one<I>(c)) : void()), ...);
             return done;
         }(std::make_index_sequence<classic_method_count>{});
     }
 
-    template <template <class, class> class Stepper, needs N, class C>
-    static steps_and_forces one(const classic_method<Stepper, N>&, const C& c) {
+    template <std::size_t I, class C>
+    static steps_and_forces one(const C& c) {
+        constexpr auto& method = std::get<I>(classic_methods);
+        return with_stepper<!method.history>(method, c);
+    }
+
+    template <bool Resumable, template <class, class> class Stepper, needs N, class C>
+    static steps_and_forces with_stepper(const classic_method<Stepper, N>&, const C& c) {
         if constexpr (meets<N, typename C::system>())
-            return c.drive(make_classic<Stepper, typename C::State>(c.sys));
+            return c.template drive<Resumable>(make_classic<Stepper, typename C::State>(c.sys));
         else
             refuse<typename C::system>(c.m.name, N);
     }
 };
 
 // Boost.Odeint's steppers on the library's bridge (odeint.hpp), whose
-// workspace keeps the evaluations free of allocation and counts them.
-template <class C>
-void check_finite(const typename C::OdeState& y, std::size_t step, double t, double h) {
-    for (double v : y)
-        if (!std::isfinite(v)) throw blow_up(step, t, h);
+// workspace keeps the evaluations free of allocation and counts them. The
+// observer reaches them type-erased (nullptr: not observed), so each Odeint
+// stepper is compiled once per system, not once per observer; a call per
+// step costs nothing next to an Odeint step.
+template <class Sys, int Dim>
+struct odeint_run {
+    using State = state_of<Dim>;
+    using OdeState = odeint_state<Dim>;
+    const Sys& sys;
+    const method_spec& m;
+    const run_request& rq;
+    double t0, t_end;
+    State& x;
+    const std::function<void(const State&, double)>* observe;
+
+    static void check_finite(const OdeState& y, std::size_t step, double t, double h) {
+        for (double v : y)
+            if (!std::isfinite(v)) throw blow_up(step, t, h);
+    }
+
+    steps_and_forces fixed_step() const {
+        odeint_workspace<double, Dim> w;
+        const auto f = make_odeint_system<Dim>(sys, &w);
+        OdeState y = to_odeint<Dim>(x);
+        odeint::runge_kutta4<OdeState> rk4;
+        const double dt = rq.dt, span = t_end - t0;
+        const auto n = static_cast<std::size_t>(std::floor(span / dt));
+        double rest = span - double(n) * dt;
+        if (rest <= 8 * std::numeric_limits<double>::epsilon() * span) rest = 0;
+        if (observe) (*observe)(std::as_const(x), t0);  // as sympl's driver: t0 first
+        const std::size_t total = n + (rest > 0 ? 1 : 0);
+        for (std::size_t i = 0; i < total; ++i) {
+            const double t = t0 + double(i) * dt, h = i < n ? dt : rest;
+            rk4.do_step(f, y, t, h);
+            if (observe) {
+                check_finite(y, i + 1, t, h);
+                (*observe)(to_state<Dim>(y), t + h);
+            }
+        }
+        if (!observe) check_finite(y, total, t_end, dt);
+        x = to_state<Dim>(y);
+        return {total, w.evaluations};
+    }
+
+    // Any Odeint controlled stepper (try_step), from t0 to exactly t_end.
+    template <class Controlled>
+    steps_and_forces controlled(Controlled stepper) const {
+        odeint_workspace<double, Dim> w;
+        const auto f = make_odeint_system<Dim>(sys, &w);
+        OdeState y = to_odeint<Dim>(x);
+        double t = t0, h = (t_end - t0) / 1000;
+        std::size_t steps = 0, failed = 0;
+        if (observe) (*observe)(std::as_const(x), t0);
+        while (t < t_end) {
+            if (t + h > t_end) h = t_end - t;
+            if (!(h > 1e-14 * (t_end - t0)) || t + h == t || ++failed > 500)
+                throw integration_error(m.name + ": step size underflow at t = " + format_number(t, 17) + " (dt = " +
+                                            format_number(h, 3) + ")",
+                                        steps + 1, t);
+            if (stepper.try_step(f, y, t, h) == odeint::success) {
+                ++steps;
+                failed = 0;
+                check_finite(y, steps, t, h);
+                if (observe) (*observe)(to_state<Dim>(y), t);
+            }
+        }
+        x = to_state<Dim>(y);
+        return {steps, w.evaluations};
+    }
+};
+
+// The kind's Odeint run with the context's observer type-erased.
+template <class C, class Run>
+steps_and_forces with_odeint(const C& c, Run run) {
+    using R = odeint_run<typename C::system, C::dimension>;
+    std::function<void(const typename C::State&, double)> observe;
+    if constexpr (C::observed) observe = [&](const typename C::State& y, double t) { c.observe(y, t); };
+    return run(R{c.sys, c.m, c.rq, c.t0, c.t_end, c.x, C::observed ? &observe : nullptr});
+}
+
+// One instantiation per system for each Odeint kind, whatever the observer.
+template <class Sys, int Dim>
+steps_and_forces odeint_rk4_run(const odeint_run<Sys, Dim>& r) {
+    return r.fixed_step();
+}
+template <class Sys, int Dim>
+steps_and_forces odeint_dopri5_run(const odeint_run<Sys, Dim>& r) {
+    using OdeState = odeint_state<Dim>;
+    return r.controlled(odeint::make_controlled(r.rq.tolerance, r.rq.tolerance, odeint::runge_kutta_dopri5<OdeState>()));
+}
+template <class Sys, int Dim>
+steps_and_forces odeint_fehlberg78_run(const odeint_run<Sys, Dim>& r) {
+    using OdeState = odeint_state<Dim>;
+    return r.controlled(
+        odeint::make_controlled(r.rq.tolerance, r.rq.tolerance, odeint::runge_kutta_fehlberg78<OdeState>()));
+}
+template <class Sys, int Dim>
+steps_and_forces odeint_bulirsch_stoer_run(const odeint_run<Sys, Dim>& r) {
+    return r.controlled(odeint::bulirsch_stoer<odeint_state<Dim>>(r.rq.tolerance, r.rq.tolerance));
 }
 
 template <>
 struct run_kind<method_kind::odeint_rk4> {
     template <class C>
     static steps_and_forces run(const C& c) {
-        odeint_workspace<double, C::dimension> w;
-        const auto f = make_odeint_system<C::dimension>(c.sys, &w);
-        typename C::OdeState y = to_odeint<C::dimension>(c.x);
-        odeint::runge_kutta4<typename C::OdeState> rk4;
-        const double dt = c.rq.dt, span = c.t_end - c.t0;
-        const auto n = static_cast<std::size_t>(std::floor(span / dt));
-        double rest = span - double(n) * dt;
-        if (rest <= 8 * std::numeric_limits<double>::epsilon() * span) rest = 0;
-        if constexpr (C::observed) c.observe(std::as_const(c.x), c.t0);  // as sympl's driver: t0 first
-        const std::size_t total = n + (rest > 0 ? 1 : 0);
-        for (std::size_t i = 0; i < total; ++i) {
-            const double t = c.t0 + double(i) * dt, h = i < n ? dt : rest;
-            rk4.do_step(f, y, t, h);
-            if constexpr (C::observed) {
-                check_finite<C>(y, i + 1, t, h);
-                c.observe(to_state<C::dimension>(y), t + h);
-            }
-        }
-        if constexpr (!C::observed) check_finite<C>(y, total, c.t_end, dt);
-        c.x = to_state<C::dimension>(y);
-        return {total, w.evaluations};
+        return with_odeint(c, odeint_rk4_run<typename C::system, C::dimension>);
     }
 };
-
-// Any Odeint controlled stepper (try_step), from t0 to exactly t_end.
-template <class C, class Controlled>
-steps_and_forces odeint_controlled(const C& c, Controlled stepper) {
-    odeint_workspace<double, C::dimension> w;
-    const auto f = make_odeint_system<C::dimension>(c.sys, &w);
-    typename C::OdeState y = to_odeint<C::dimension>(c.x);
-    double t = c.t0, h = (c.t_end - c.t0) / 1000;
-    std::size_t steps = 0, failed = 0;
-    if constexpr (C::observed) c.observe(std::as_const(c.x), c.t0);
-    while (t < c.t_end) {
-        if (t + h > c.t_end) h = c.t_end - t;
-        if (!(h > 1e-14 * (c.t_end - c.t0)) || t + h == t || ++failed > 500)
-            throw integration_error(c.m.name + ": step size underflow at t = " + format_number(t, 17) + " (dt = " +
-                                        format_number(h, 3) + ")",
-                                    steps + 1, t);
-        if (stepper.try_step(f, y, t, h) == odeint::success) {
-            ++steps;
-            failed = 0;
-            check_finite<C>(y, steps, t, h);
-            if constexpr (C::observed) c.observe(to_state<C::dimension>(y), t);
-        }
-    }
-    c.x = to_state<C::dimension>(y);
-    return {steps, w.evaluations};
-}
 
 template <>
 struct run_kind<method_kind::odeint_dopri5> {
     template <class C>
     static steps_and_forces run(const C& c) {
-        const double tol = c.rq.tolerance;
-        return odeint_controlled(c, odeint::make_controlled(tol, tol, odeint::runge_kutta_dopri5<typename C::OdeState>()));
+        return with_odeint(c, odeint_dopri5_run<typename C::system, C::dimension>);
     }
 };
 
@@ -334,9 +396,7 @@ template <>
 struct run_kind<method_kind::odeint_fehlberg78> {
     template <class C>
     static steps_and_forces run(const C& c) {
-        const double tol = c.rq.tolerance;
-        return odeint_controlled(c,
-                                 odeint::make_controlled(tol, tol, odeint::runge_kutta_fehlberg78<typename C::OdeState>()));
+        return with_odeint(c, odeint_fehlberg78_run<typename C::system, C::dimension>);
     }
 };
 
@@ -344,7 +404,7 @@ template <>
 struct run_kind<method_kind::odeint_bulirsch_stoer> {
     template <class C>
     static steps_and_forces run(const C& c) {
-        return odeint_controlled(c, odeint::bulirsch_stoer<typename C::OdeState>(c.rq.tolerance, c.rq.tolerance));
+        return with_odeint(c, odeint_bulirsch_stoer_run<typename C::system, C::dimension>);
     }
 };
 

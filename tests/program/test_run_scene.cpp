@@ -10,6 +10,7 @@
 
 #include "read_csv.hpp"
 #include "scratch_directory.hpp"
+#include "run_plan.hpp"
 #include "run_scene.hpp"
 
 using namespace sympl::app;
@@ -115,4 +116,28 @@ TEST_CASE("run: the trajectory of a run that blows up ends with a line that says
     while (std::getline(in, line)) last = line;
     CHECK(last.rfind("# truncated: the run diverged", 0) == 0);
     fs::remove_all(dir);
+}
+
+TEST_CASE("run: a sweep runs its first (largest) value, says so, and the impossible tail is left to the report") {
+    // dt from 0.1 down to 1e-320: `sympl run` takes 0.1 (10 steps) and says it
+    // runs the first value; the report would refuse the tail with the figures.
+    const scene s = parse_scene("system = \"harmonic_oscillator\"\nmethods = [\"leapfrog_kdk\"]\n"
+                                "dt = {from = 0.1, to = 1e-320, count = 5}\nt_end = 1\n",
+                                "sweep.toml");
+    std::ostringstream text;
+    run_scene(s, false, text);
+    CHECK(text.str().find("(a sweep: each method runs its first, largest, value; `sympl report` runs them all)") !=
+          std::string::npos);
+    std::ostringstream json;
+    run_scene(s, true, json);
+    CHECK(nlohmann::json::parse(json.str())[0]["steps"] == 10);
+    const problem p = problem_of(s);
+    CHECK_THROWS_WITH_AS(check_run_size(plan_runs(s, p, sweep_use::whole), default_max_steps),
+                         doctest::Contains("method 'leapfrog_kdk' at dt = "), scene_error);
+    // One value: nothing to say.
+    std::ostringstream single;
+    run_scene(parse_scene("system = \"harmonic_oscillator\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.1\nt_end = 1\n",
+                          "one.toml"),
+              false, single);
+    CHECK(single.str().find("a sweep") == std::string::npos);
 }
