@@ -19,7 +19,22 @@ namespace sympl::app {
 
 namespace fs = std::filesystem;
 
-void energy_long_span_study(const study_context& c) {
+namespace {
+
+struct sample {
+    std::size_t rk_steps;
+    int k;  // 10^(k/10) periods nominally
+    double leapfrog, rk4;
+};
+
+struct long_span {
+    std::size_t per_period, rk_per_period, periods;
+    double h;
+    std::vector<sample> samples{};
+    std::uint64_t lf_forces = 0, rk_forces = 0;
+};
+
+long_span measure(const study_context& c) {
     using K = phase_space<double, 2>;
     const hamiltonians::kepler kep{};
     const double ecc = 0.5, period = 2 * std::acos(-1.0);
@@ -40,12 +55,8 @@ void energy_long_span_study(const study_context& c) {
     // Samples at about 10 per decade from one period on, each on a whole
     // number of RK4 steps so that both methods stop at the same time; each
     // holds the largest error since the previous sample (every step counts).
-    struct sample {
-        std::size_t rk_steps;
-        int k;  // 10^(k/10) periods nominally
-        double leapfrog, rk4;
-    };
-    std::vector<sample> samples;
+    long_span r{.per_period = per_period, .rk_per_period = rk_per_period, .periods = periods, .h = h};
+    std::vector<sample>& samples = r.samples;
     std::size_t done = 0;  // RK4 steps so far (the leapfrog has done 4 times as many)
     for (int k = 0;; ++k) {
         const double nominal = std::pow(10.0, k / 10.0);
@@ -63,9 +74,15 @@ void energy_long_span_study(const study_context& c) {
         done = target;
         samples.push_back({target, k, worst_lf, worst_rk});
     }
-    const std::uint64_t lf_forces = lf.force_evaluations(), rk_forces = rk.force_evaluations();
-    const double cost_gap = std::fabs(double(lf_forces) - double(rk_forces)) / double(rk_forces);
+    r.lf_forces = lf.force_evaluations();
+    r.rk_forces = rk.force_evaluations();
+    return r;
 
+}
+
+// energy_long_span.csv and, with gnuplot, its PNG.
+bool write_files(const study_context& c, const long_span& r) {
+    const auto& [per_period, rk_per_period, periods, h, samples, lf_forces, rk_forces] = r;
     atomic_file csv(c.dir / "energy_long_span.csv");
     csv.stream().precision(10);
     csv.stream() << "t,periods,leapfrog_energy_error,rk4_energy_error\n";
@@ -93,6 +110,12 @@ void energy_long_span_study(const study_context& c) {
         run_gnuplot(c.dir / "energy_long_span.gp", c.dir / "energy_long_span.png");
     }
 
+    return plots;
+}
+
+void write_summary(const study_context& c, const long_span& r, bool plots) {
+    const auto& [per_period, rk_per_period, periods, h, samples, lf_forces, rk_forces] = r;
+    const double cost_gap = std::fabs(double(lf_forces) - double(rk_forces)) / double(rk_forces);
     c.summary << "## Energy error over a long span\n\nKepler problem at e = 0.5 (period 2 pi) for " << periods
               << " periods: the symplectic leapfrog_kdk at h = 2 pi/" << per_period << " against the classic rk4 at 4h, "
               << "the same cost per unit time (" << lf_forces << " against " << rk_forces
@@ -139,6 +162,13 @@ void energy_long_span_study(const study_context& c) {
         c.summary << "over this span rk4 stays the more accurate of the two.";
     c.summary << " Files: energy_long_span.csv" << (plots ? ", energy_long_span.png" : " (install gnuplot for the PNG)")
               << ".\n\n";
+}
+
+}  // namespace
+
+void energy_long_span_study(const study_context& c) {
+    const long_span r = measure(c);
+    write_summary(c, r, write_files(c, r));
 }
 
 }  // namespace sympl::app

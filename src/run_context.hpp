@@ -1,0 +1,170 @@
+#pragma once
+// What every method kind's run shares (run_kinds.hpp): the program's state
+// types, what a system type offers (the library's concepts), the run context
+// a kind's run receives, and the checkpointed driver.
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include <sympl/sympl.hpp>
+
+#include "format.hpp"
+#include "method_kinds.hpp"
+#include "problem.hpp"
+
+namespace sympl::app::detail {
+
+// States of Dim degrees of freedom: fixed-size for small systems, as a
+// library user would write them (the program's timings are theirs).
+template <int Dim>
+using state_of = phase_space<double, Dim>;
+
+template <int Dim, class Container>
+state_of<Dim> to_state(const Container& x) {
+    return from_stacked<state_of<Dim>>(x);
+}
+
+// Any state as stacked doubles (the reference runs in long double).
+template <class X>
+std::vector<double> to_vector(const X& x) {
+    const auto y = stacked(x);
+    return {y.begin(), y.end()};
+}
+
+// Whether a system of type Sys meets a requirement: decided by the library's
+// concepts, at compile time; form_of<Sys>() is the registry's copy.
+// (V < 0 is a property of the system's values, given by its registry entry.)
+template <needs N, class Sys>
+constexpr bool meets() {
+    using State = phase_space<double>;
+    using E = decltype(equations_of<State>(std::declval<Sys>()));
+    if constexpr (N == needs::any) return true;
+    else if constexpr (N == needs::separable_hamiltonian || N == needs::negative_potential)
+        return separable_hamiltonian<Sys, State::vector>;
+    else if constexpr (N == needs::differentiable_force) {
+        if constexpr (separable_hamiltonian<Sys, State::vector>) return differentiable_force<Sys, State::vector>;
+        else return false;
+    } else if constexpr (N == needs::newtonian) return newtonian_form<E>;
+    else return damped_newtonian_form<E, State>;
+}
+
+template <class Sys>
+system_form form_of() {
+    return {.separable_hamiltonian = meets<needs::separable_hamiltonian, Sys>(),
+            .newtonian = meets<needs::newtonian, Sys>(),
+            .damped_split = meets<needs::damped_split, Sys>(),
+            .differentiable_force = meets<needs::differentiable_force, Sys>()};
+}
+
+template <class Sys>
+[[noreturn]] void refuse(const std::string& method, needs n) {
+    throw invalid_argument("method '" + method + "' " + why_not(n, form_of<Sys>()));
+}
+
+using steps_and_forces = std::pair<std::size_t, std::uint64_t>;
+
+// The stepper's carried memory as the checkpoint holds it, and back.
+template <class V>
+stepper_memory<std::vector<double>> to_record(const stepper_memory<V>& m) {
+    const auto as_std = [](const V& v) { return std::vector<double>(v.data(), v.data() + v.size()); };
+    return {as_std(m.force), as_std(m.velocity), as_std(m.q_error), as_std(m.p_error),
+            m.force_fresh,   m.velocity_fresh,   m.force_evaluations, m.velocity_evaluations};
+}
+template <class V>
+stepper_memory<V> from_record(const stepper_memory<std::vector<double>>& m) {
+    const auto as_vector = [](const std::vector<double>& v) {
+        return V(Eigen::Map<const Eigen::VectorXd>(v.data(), Eigen::Index(v.size())));
+    };
+    return {as_vector(m.force), as_vector(m.velocity), as_vector(m.q_error), as_vector(m.p_error),
+            m.force_fresh,      m.velocity_fresh,      m.force_evaluations, m.velocity_evaluations};
+}
+
+template <class Context, class Stepper>
+steps_and_forces checkpointed(const Context& c, Stepper& stepper);
+
+// What a kind's run gets: the system, the method, the request, the span, the
+// state (x0 in, the final state out) and the observer, called at t0 and after
+// every step when the run is observed (Observer is not no_observer).
+template <class Sys, int Dim, class Observer>
+struct run_context {
+    using system = Sys;
+    using State = state_of<Dim>;
+    static constexpr int dimension = Dim;
+    static constexpr bool observed = !std::is_same_v<Observer, no_observer>;
+
+    const Sys& sys;
+    const method_spec& m;
+    const run_request& rq;
+    double t0, t_end;
+    State& x;
+    Observer& observe;
+
+    // Any sympl stepper over the span; checkpointed when the request asks.
+    // Steppers a checkpoint cannot resume (Resumable false: extrapolated,
+    // processed, classic with history) are refused by the scene before they
+    // get here, and their checkpointed driver is not compiled.
+    template <bool Resumable = true, class Stepper>
+    steps_and_forces drive(Stepper stepper) const {
+        run_summary s;
+        if constexpr (observed) {
+            if (rq.checkpoint.every_steps) {
+                if constexpr (Resumable)
+                    return checkpointed(*this, stepper);
+                else
+                    throw invalid_argument(why_not_resumable(m));
+            }
+            s = integrate_until(stepper, x, t0, t_end, rq.dt, observe);
+        } else {
+            s = integrate_until(stepper, x, t0, t_end, rq.dt);
+        }
+        return {s.steps, s.force_evaluations};
+    }
+};
+
+// The observed run with a checkpoint every rq.checkpoint.every_steps steps,
+// or its continuation from rq.checkpoint.resume: the driver resumes at the
+// checkpoint's step (times from the integer index), the stepper from its
+// saved memory, so the rest of the run is bit for bit the uninterrupted one.
+template <class Context, class Stepper>
+steps_and_forces checkpointed(const Context& c, Stepper& stepper) {
+    using State = typename Context::State;
+    constexpr bool has_memory = requires { stepper.memory(); };
+    const checkpoint_hooks& hooks = c.rq.checkpoint;
+    run_options options;
+    std::uint64_t forces_before = 0, velocities_before = 0;
+    if (const checkpoint_record* from = hooks.resume) {
+        c.x = to_state<Context::dimension>(from->state);
+        if constexpr (has_memory) stepper.restore(from_record<typename State::vector>(from->memory));
+        forces_before = from->memory.force_evaluations;
+        velocities_before = from->memory.velocity_evaluations;
+        options.first_step = from->step;
+    }
+    std::size_t done = options.first_step;
+    bool at_start = options.first_step == 0;  // the observer's first call is t0, not a step
+    const auto observe = [&](const State& y, double t) {
+        c.observe(y, t);
+        if (std::exchange(at_start, false)) return;
+        if (++done % hooks.every_steps != 0 || t == c.t_end) return;
+        checkpoint_record record;
+        record.step = done;
+        record.state = to_vector(y);
+        if constexpr (has_memory) {
+            record.memory = to_record(stepper.memory());
+        } else {
+            record.memory.force_evaluations = forces_before + stepper.force_evaluations();
+            record.memory.velocity_evaluations = velocities_before + stepper.velocity_evaluations();
+        }
+        hooks.save(record);
+    };
+    const run_summary s = integrate_until(stepper, c.x, c.t0, c.t_end, c.rq.dt, observe, options);
+    return {options.first_step + s.steps, forces_before + s.force_evaluations};
+}
+
+// How a kind runs: run_kind<K>::run(context), one per row of method_kind_entries.
+template <method_kind K>
+struct run_kind;
+
+}  // namespace sympl::app::detail
