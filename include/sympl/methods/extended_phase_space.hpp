@@ -1,0 +1,505 @@
+#pragma once
+// Explicit and semiexplicit symplectic methods for a non-separable H(q, p) in
+// an extended phase space of two copies, (q, p) and (x, y) (Pihajoki 2015,
+// Celest. Mech. Dyn. Astron. 121, 211): the extended Hamiltonian
+//     H(q, y) + H(x, p)
+// is a sum of two parts whose flows are exact and explicit, and on the
+// subspace q = x, p = y its flow is the original flow on each copy.
+//
+//   phi_A, the flow of H_A = H(q, y): q and y stay, so it is a drift of x and
+//          a kick of p:  x += t dH/dp(q, y),  p -= t dH/dq(q, y);
+//   phi_B, the flow of H_B = H(x, p):  q += t dH/dp(x, p),  y -= t dH/dq(x, p).
+//
+// Split naively the copies drift apart (the subspace is invariant for the
+// exact flow but not for the splitting). Two cures:
+//
+// tao_stepper (Tao 2016, Phys. Rev. E 94, 043303): bind the copies by
+//     omega * H_C,  H_C = (|q - x|^2 + |p - y|^2) / 2,
+// whose exact flow (Hamilton's equations: d(q - x)/dt = 2 omega (p - y),
+// d(p - y)/dt = -2 omega (q - x), q + x and p + y constant) rotates the
+// difference of the copies by the angle 2 omega t:
+//     phi_C: (q - x, p - y) -> R(2 omega t) (q - x, p - y),
+//            R(a) = [[cos a, sin a], [-sin a, cos a]].
+// Second order, symmetric (Tao 2016):
+//     A(dt/2) B(dt/2) C(dt) B(dt/2) A(dt/2),
+// explicit, symplectic in the extended space; in the original space it is only
+// near-symplectic. Tao's error bound for integrable systems is O(T dt^l omega)
+// (order l) under his condition dt << omega^(-1/l) (Tao 2016).
+//
+// semiexplicit_stepper (Jayawardana & Ohsawa 2023, Math. Comp. 92, 251,
+// arXiv:2111.10915): no binding term; Pihajoki's symmetric map
+//     Phi(dt) = A(dt/2) B(dt) A(dt/2)
+// is wrapped in the symmetric projection (Hairer 2000, BIT 40, 726) onto the
+// subspace q = x, p = y along the constraint's gradient (mu, -mu):
+//     z~0 = (q + mu_q, p + mu_p, q - mu_q, p - mu_p),   z~1 = Phi(z~0),
+//     z1  = z~1 + (mu, -mu)  with mu chosen so that z1 has q = x, p = y.
+// The step is then symmetric and symplectic in the original space (J&O 2023),
+// and keeps linear and quadratic invariants (Ohsawa 2023, arXiv:2208.10546); only mu is implicit (2n unknowns, solved by the simplified Newton
+// iteration mu <- mu - g(z1)/4, g = (q - x, p - y), whose Jacobian is 4 I + O(dt)).
+//
+// Higher orders for both: symmetric compositions of the second-order map with
+// weights gamma_i (Yoshida 1990; Suzuki 1990), read off any sympl::table that
+// is a symmetric composition of leapfrog steps: triple_jump(leapfrog),
+// suzuki_fractal(...), and the catalog's yoshida_4, suzuki_4, mclachlan_ss5,
+// yoshida_6*, kahan_li_*, mclachlan_ss9/17, yoshida_8*, suzuki_umeno_8,
+// sofroniou_spaletta_10, leapfrog_kdk/dkd itself. In kick-drift-kick form such
+// a table's drifts are the gamma_i and its kicks the half sums of neighbours;
+// in drift-kick-drift form the roles swap. Other tables (Blanes-Moan,
+// Runge-Kutta-Nystrom, force-gradient, non-symmetric) are refused.
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "../core/dual.hpp"
+#include "../core/error.hpp"
+#include "../core/general_hamiltonian.hpp"
+#include "../core/phase_space.hpp"
+#include "../core/table.hpp"
+
+namespace sympl {
+
+// A point of the extended phase space: the original copy (q, p) and the
+// second copy (x, y).
+template <class S = double, int Dim = Eigen::Dynamic>
+struct extended_state {
+    using vector = Eigen::Matrix<S, Dim, 1>;
+    vector q, p, x, y;
+
+    extended_state() = default;
+    // Both copies at the point of the original phase space.
+    explicit extended_state(const phase_space<S, Dim>& z) : q(z.q), p(z.p), x(z.q), y(z.p) {}
+};
+
+// A table read as a symmetric composition of a second-order symmetric map.
+struct composition_weights {
+    std::vector<coefficient> gamma;  // the weights, sum 1, palindromic
+    int order = 0;                   // the table's order (0 = unknown)
+    std::string name;
+};
+
+namespace detail {
+// gamma_i of a table that composes leapfrog steps (see the header comment);
+// refuses any other table, naming it and what was expected.
+inline composition_weights leapfrog_composition_weights(const table& t, const std::string& who) {
+    const std::string expected =
+        "; expected a symmetric composition of leapfrog steps (leapfrog_kdk, triple_jump(...), suzuki_fractal(...), "
+        "yoshida_6, kahan_li_8, ...)";
+    const std::string named = who + ": table '" + t.name() + "'";
+    if (t.has_force_gradient()) throw invalid_argument(named + " has force-gradient terms" + expected);
+    if (!t.is_symmetric(1e-13L)) throw invalid_argument(named + " is not symmetric" + expected);
+    const std::vector<substep> ops = t.substeps();
+    // Symmetric and canonical: outer sub-steps of one kind, alternating, odd count.
+    composition_weights w{{}, t.order(), t.name()};
+    for (std::size_t i = 1; i < ops.size(); i += 2) w.gamma.push_back(ops[i].weight);
+    for (std::size_t i = 0; i < ops.size(); i += 2) {
+        const std::size_t k = i / 2;  // outer sub-step k sits between gamma_{k-1} and gamma_k
+        const coefficient left = k > 0 ? w.gamma[k - 1] : 0;
+        const coefficient right = k < w.gamma.size() ? w.gamma[k] : 0;
+        const coefficient want = (left + right) / 2;
+        if (std::fabs(ops[i].weight - want) > 1e-12L * std::max<coefficient>(1, std::fabs(want)))
+            throw invalid_argument(named + ": its " + (ops[i].kind == substep::kick ? "kick" : "drift") + " number " +
+                                   std::to_string(k) + " is " + format_coefficient(ops[i].weight) +
+                                   " where a composition of leapfrog steps has the half sum of its neighbours, " +
+                                   format_coefficient(want) + expected);
+    }
+    return w;
+}
+
+template <class S>
+using primal_scalar = std::decay_t<decltype(primal(std::declval<S>()))>;
+
+// Euclidean norm of the plain values (derivative parts of dual numbers ignored).
+template <class V>
+auto primal_norm(const V& v) {
+    using P = primal_scalar<typename V::Scalar>;
+    P s = 0;
+    for (Eigen::Index i = 0; i < v.size(); ++i) s += primal(v[i]) * primal(v[i]);
+    using std::sqrt;
+    return sqrt(s);
+}
+
+template <class V>
+bool all_finite(const V& v) {
+    using std::isfinite;
+    for (Eigen::Index i = 0; i < v.size(); ++i)
+        if (!isfinite(v[i])) return false;
+    return true;
+}
+
+template <class S>
+void check_step_size(S dt, const char* who) {
+    using std::isfinite;
+    if (!isfinite(primal(dt)) || primal(dt) == 0)
+        throw invalid_argument(std::string(who) + ": dt = " + number_text(static_cast<long double>(primal(dt))) +
+                               "; expected a finite, non-zero step size");
+}
+
+// The shared part of both steppers: H, the composition, the exact partial flows
+// and the evaluation counters.
+template <class H, class State>
+class extended_flows {
+public:
+    using state_type = State;
+    using scalar = typename State::scalar;
+    using vector = typename State::vector;
+    using extended = extended_state<scalar, State::dimension>;
+    using P = primal_scalar<scalar>;
+
+    extended_flows(H h, const table& t, const char* who)
+        : h_(std::move(h)), weights_(leapfrog_composition_weights(t, who)) {}
+
+    const H& hamiltonian() const { return h_; }
+    int order() const { return weights_.order; }
+    const composition_weights& weights() const { return weights_; }
+    // dH/dq evaluations (one per partial flow of A or B, reused where the point is unchanged).
+    std::uint64_t force_evaluations() const { return evaluations_; }
+    // dH/dp evaluations: as many (each partial flow needs both gradients at one point).
+    std::uint64_t velocity_evaluations() const { return evaluations_; }
+
+protected:
+    // phi_A(t): the flow of H(q, y); q, y fixed. `cached`: the gradients at
+    // this (q, y) are still in gq_, gp_ from the last phi_A.
+    void flow_A(extended& z, P t, bool& cached) {
+        if (!cached) {
+            sympl::dH_dq(h_, z.q, z.y, gq_);
+            sympl::dH_dp(h_, z.q, z.y, gp_);
+            ++evaluations_;
+        }
+        z.p -= scalar(t) * gq_;
+        z.x += scalar(t) * gp_;
+        cached = true;
+    }
+    // phi_B(t): the flow of H(x, p); x, p fixed.
+    void flow_B(extended& z, P t, bool& cached) {
+        sympl::dH_dq(h_, z.x, z.p, gq_);
+        sympl::dH_dp(h_, z.x, z.p, gp_);
+        ++evaluations_;
+        z.q += scalar(t) * gp_;
+        z.y -= scalar(t) * gq_;
+        cached = false;
+    }
+
+    H h_;
+    composition_weights weights_;
+    vector gq_, gp_;
+    std::uint64_t evaluations_ = 0;
+};
+}  // namespace detail
+
+// ---- Tao 2016 ------------------------------------------------------------------
+
+struct tao_options {
+    // The binding omega of omega * H_C (a frequency: 1 / time). 20 is the value
+    // Jayawardana & Ohsawa 2023 give Tao's method on H = (1 + q^2)(1 + p^2)/2,
+    // whose own angular frequencies stay below about 10 there. The rule: a few
+    // times the problem's fastest angular frequency, and dt << omega^(-1/l)
+    // for a method of order l (Tao 2016).
+    double omega = 20;
+    // The copies are declared unbound, and the run stopped, when
+    //     |q - x| + |p - y| > divergence_limit * (1 + |q| + |p|)
+    // (Euclidean norms): the two copies are two approximations of the same
+    // solution, so beyond 10% of the state's size neither is one.
+    double divergence_limit = 0.1;
+};
+
+// Tao's explicit method of any even order, over a state of the original phase
+// space; the second copy (x, y) is kept inside and carried from step to step
+// as long as the state handed in is the one the last step returned (otherwise
+// both copies restart at the state). The result is the first copy (q, p).
+template <class H, class State>
+    requires general_hamiltonian<H, typename State::vector>
+class tao_stepper : public detail::extended_flows<H, State> {
+    using base = detail::extended_flows<H, State>;
+    using typename base::P;
+
+public:
+    using typename base::extended;
+    using typename base::scalar;
+    using typename base::state_type;
+    using typename base::vector;
+
+    tao_stepper(H h, const table& t, tao_options o = {}) : base(std::move(h), t, "tao_stepper"), options_(o) {
+        using std::isfinite;
+        if (!isfinite(o.omega) || !(o.omega > 0))
+            throw invalid_argument("tao_stepper: omega = " + detail::number_text(o.omega) +
+                                   "; expected a finite binding frequency > 0 (Tao 2016 uses 20)");
+        if (!isfinite(o.divergence_limit) || !(o.divergence_limit > 0))
+            throw invalid_argument("tao_stepper: divergence_limit = " + detail::number_text(o.divergence_limit) +
+                                   "; expected a finite relative limit > 0 (default 0.1)");
+    }
+
+    double omega() const { return options_.omega; }
+    // |q - x| + |p - y| after the last step, and its largest value since the copies were made.
+    P divergence() const { return divergence_; }
+    P max_divergence() const { return max_divergence_; }
+    // Steps since the copies were made from a state.
+    std::size_t steps_taken() const { return steps_; }
+    const extended& extended_point() const { return z_; }
+
+    // Forget the second copy: the next step starts both copies at its state.
+    void reset() { bound_ = false; }
+
+    // One step; on a lost binding or a non-finite value x is left as it was and
+    // integration_error names the step, the time, the divergence and omega.
+    // Times in its messages count from when the copies were made.
+    void step(state_type& x, scalar dt) { advance(x, dt, nullptr); }
+    // The same with the time at the start of the step (the drivers of integrate.hpp call this one).
+    void step(state_type& x, scalar t, scalar dt) {
+        const P t0 = primal(t);
+        advance(x, dt, &t0);
+    }
+
+    // One step of the map in the extended phase space, no checks (for
+    // measuring it, e.g. its symplecticity there).
+    void step_extended(extended& z, scalar dt) {
+        detail::check_step_size(dt, "tao_stepper");
+        bool cached = false;
+        map(z, primal(dt), cached);
+    }
+
+private:
+    // Tao 2016's second-order map, composed: A(g/2) B(g/2) C(g) B(g/2) A(g/2) per weight g,
+    // neighbouring A's merged (one exact flow), the first A reusing the last
+    // A's gradients when the copies carry over (q and y have not moved since).
+    void map(extended& z, P dt, bool& cached) {
+        const auto& g = this->weights_.gamma;
+        P pending_A = P(g.front()) / 2 * dt;
+        for (std::size_t i = 0; i < g.size(); ++i) {
+            const P h = P(g[i]) * dt;
+            this->flow_A(z, pending_A, cached);
+            this->flow_B(z, h / 2, cached);
+            flow_C(z, h);
+            this->flow_B(z, h / 2, cached);
+            pending_A = h / 2 + (i + 1 < g.size() ? P(g[i + 1]) / 2 * dt : P(0));
+        }
+        this->flow_A(z, pending_A, cached);
+    }
+
+    // phi_C(t) of omega * H_C: the difference of the copies rotated by 2 omega t,
+    // their sum fixed (Tao 2016).
+    void flow_C(extended& z, P t) {
+        using std::cos;
+        using std::sin;
+        const P angle = 2 * P(options_.omega) * t;
+        const P c = cos(angle), s = sin(angle);
+        const vector sum_q = z.q + z.x, sum_p = z.p + z.y;
+        const vector dq = z.q - z.x, dp = z.p - z.y;
+        const vector rq = scalar(c) * dq + scalar(s) * dp;
+        const vector rp = scalar(c) * dp - scalar(s) * dq;
+        z.q = (sum_q + rq) / scalar(2);
+        z.x = (sum_q - rq) / scalar(2);
+        z.p = (sum_p + rp) / scalar(2);
+        z.y = (sum_p - rp) / scalar(2);
+    }
+
+    void advance(state_type& x, scalar dt, const P* t_start) {
+        detail::check_step_size(dt, "tao_stepper");
+        const bool carry = bound_ && x.q.size() == last_.q.size() && x.q == last_.q && x.p == last_.p;
+        extended z = carry ? z_ : extended(x);
+        bool cached = carry && cached_;
+        if (!carry) {
+            steps_ = 0;
+            elapsed_ = 0;
+            max_divergence_ = 0;
+        }
+        const P t_end = (t_start ? *t_start : elapsed_) + primal(dt);
+        map(z, primal(dt), cached);
+        const P d = detail::primal_norm(vector(z.q - z.x)) + detail::primal_norm(vector(z.p - z.y));
+        const P size = 1 + detail::primal_norm(z.q) + detail::primal_norm(z.p);
+        using std::isfinite;
+        const bool finite = detail::all_finite(z.q) && detail::all_finite(z.p) && detail::all_finite(z.x) &&
+                            detail::all_finite(z.y) && isfinite(d);
+        if (!finite || d > P(options_.divergence_limit) * size) {
+            bound_ = false;
+            const std::string at = "step " + std::to_string(steps_ + 1) + " (t = " + detail::number_text(t_end) +
+                                   " at its end, dt = " + detail::number_text(primal(dt)) + ")";
+            if (!finite)
+                throw integration_error("tao_stepper: " + at + " produced a non-finite state with omega = " +
+                                            detail::number_text(options_.omega) +
+                                            "; the state is left at the start of the step",
+                                        steps_ + 1, double(t_end - primal(dt)));
+            throw integration_error(
+                "tao_stepper: the copies came apart at " + at + ": |q - x| + |p - y| = " + detail::number_text(d) +
+                    " > " + detail::number_text(options_.divergence_limit) + " * (1 + |q| + |p|) = " +
+                    detail::number_text(P(options_.divergence_limit) * size) + " with omega = " +
+                    detail::number_text(options_.omega) +
+                    "; expected omega a few times the fastest frequency of H and dt << omega^(-1/order) (Tao 2016); "
+                    "the state is left at the start of the step",
+                steps_ + 1, double(t_end - primal(dt)));
+        }
+        z_ = std::move(z);
+        cached_ = cached;
+        bound_ = true;
+        ++steps_;
+        elapsed_ += primal(dt);
+        divergence_ = d;
+        max_divergence_ = std::max(max_divergence_, d);
+        x.q = z_.q;
+        x.p = z_.p;
+        last_ = x;
+    }
+
+    tao_options options_;
+    extended z_;
+    state_type last_;
+    bool bound_ = false, cached_ = false;
+    std::size_t steps_ = 0;
+    P elapsed_ = 0, divergence_ = 0, max_divergence_ = 0;
+};
+
+template <class State, class H>
+tao_stepper<H, State> make_tao_stepper(H h, const table& t, tao_options o = {}) {
+    return tao_stepper<H, State>(std::move(h), t, o);
+}
+
+// ---- Jayawardana & Ohsawa 2023 -------------------------------------------------
+
+struct semiexplicit_options {
+    // The projection's multiplier is iterated until its update is below
+    // tolerance * (1 + |q| + |p|); 0 means to rounding (8 machine epsilons),
+    // which keeps the step symplectic to rounding.
+    double tolerance = 0;
+    // Beyond this many iterations the step is reported as failed (the
+    // iteration contracts by O(dt |d^2 H|) per sweep: too large a dt fails).
+    int max_iterations = 50;
+};
+
+// The semiexplicit method of Jayawardana & Ohsawa (2023) of any even order,
+// over a state of the original phase space. Every step starts both copies at
+// the state, so nothing is carried between steps.
+template <class H, class State>
+    requires general_hamiltonian<H, typename State::vector>
+class semiexplicit_stepper : public detail::extended_flows<H, State> {
+    using base = detail::extended_flows<H, State>;
+    using typename base::P;
+
+public:
+    using typename base::extended;
+    using typename base::scalar;
+    using typename base::state_type;
+    using typename base::vector;
+
+    semiexplicit_stepper(H h, const table& t, semiexplicit_options o = {})
+        : base(std::move(h), t, "semiexplicit_stepper"), options_(o) {
+        using std::isfinite;
+        if (!isfinite(o.tolerance) || o.tolerance < 0)
+            throw invalid_argument("semiexplicit_stepper: tolerance = " + detail::number_text(o.tolerance) +
+                                   "; expected a finite tolerance >= 0 (0 = to rounding)");
+        if (o.max_iterations < 1)
+            throw invalid_argument("semiexplicit_stepper: max_iterations = " + std::to_string(o.max_iterations) +
+                                   "; expected at least 1");
+    }
+
+    // Iterations of the projection: in all, and the most in one step.
+    std::uint64_t projection_iterations() const { return iterations_; }
+    int max_projection_iterations() const { return max_iterations_seen_; }
+    // |q - x| + |p - y| of the unprojected copies (2 |mu_q| + 2 |mu_p|) in the
+    // last step, and the largest since construction.
+    P divergence() const { return divergence_; }
+    P max_divergence() const { return max_divergence_; }
+    std::size_t steps_taken() const { return steps_; }
+
+    // Times in its messages count from the stepper's first step.
+    void step(state_type& x, scalar dt) { advance(x, dt, elapsed_ + primal(dt)); }
+    // The same with the time at the start of the step (the drivers of integrate.hpp call this one).
+    void step(state_type& x, scalar t, scalar dt) { advance(x, dt, primal(t) + primal(dt)); }
+
+private:
+    // Pihajoki's symmetric map composed: A(g/2) B(g) A(g/2) per weight g,
+    // neighbouring A's merged (J&O 2023).
+    void map(extended& z, P dt) {
+        const auto& g = this->weights_.gamma;
+        bool cached = false;
+        P pending_A = P(g.front()) / 2 * dt;
+        for (std::size_t i = 0; i < g.size(); ++i) {
+            const P h = P(g[i]) * dt;
+            this->flow_A(z, pending_A, cached);
+            this->flow_B(z, h, cached);
+            pending_A = h / 2 + (i + 1 < g.size() ? P(g[i + 1]) / 2 * dt : P(0));
+        }
+        this->flow_A(z, pending_A, cached);
+    }
+
+    void advance(state_type& x, scalar dt, P t_end) {
+        detail::check_step_size(dt, "semiexplicit_stepper");
+        const P scale = 1 + detail::primal_norm(x.q) + detail::primal_norm(x.p);
+        const P eps = std::numeric_limits<P>::epsilon();
+        const P tol = (options_.tolerance > 0 ? P(options_.tolerance) : 8 * eps) * scale;
+        vector mu_q = vector::Zero(x.q.size()), mu_p = vector::Zero(x.p.size());
+        extended z;
+        P update = std::numeric_limits<P>::infinity(), previous = update;
+        int k = 0;
+        bool converged = false;
+        while (k < options_.max_iterations) {
+            // z~0 = z0 + (mu, -mu); z~1 = Phi(z~0); z1 = z~1 + (mu, -mu) (J&O 2023).
+            z.q = x.q + mu_q;
+            z.p = x.p + mu_p;
+            z.x = x.q - mu_q;
+            z.y = x.p - mu_p;
+            map(z, primal(dt));
+            ++k;
+            // g(z1) = (q1 - x1, p1 - y1) = (Q - X + 2 mu_q, P - Y + 2 mu_p); dg/dmu = 4 I + O(dt).
+            const vector dq = (z.q - z.x + scalar(2) * mu_q) / scalar(4);
+            const vector dp = (z.p - z.y + scalar(2) * mu_p) / scalar(4);
+            mu_q -= dq;
+            mu_p -= dp;
+            using std::isfinite;
+            previous = update;
+            update = detail::primal_norm(dq) + detail::primal_norm(dp);
+            if (!isfinite(update)) break;
+            // To rounding: below the tolerance, or stalled at the rounding floor.
+            if (update <= tol || (options_.tolerance == 0 && update >= previous && update <= 1e3 * tol)) {
+                converged = true;
+                break;
+            }
+        }
+        iterations_ += std::uint64_t(k);
+        max_iterations_seen_ = std::max(max_iterations_seen_, k);
+        const auto at = [&] {
+            return "step " + std::to_string(steps_ + 1) + " (t = " + detail::number_text(t_end) + " at its end, dt = " +
+                   detail::number_text(primal(dt)) + ")";
+        };
+        if (!converged)
+            throw integration_error("semiexplicit_stepper: the projection onto q = x, p = y did not converge at " + at() +
+                                        ": the last update of its multiplier was " +
+                                        (std::isfinite(update) ? detail::number_text(update) : std::string("not finite")) +
+                                        " after " + std::to_string(k) + " iterations, tolerance " +
+                                        detail::number_text(tol) +
+                                        "; expected a smaller dt (the iteration contracts by O(dt |d2H|)); the "
+                                        "state is left at the start of the step",
+                                    steps_ + 1, double(t_end - primal(dt)));
+        // The projected point: both copies agree to the tolerance; their mean is
+        // independent of the last update of mu.
+        vector q1 = (z.q + z.x) / scalar(2), p1 = (z.p + z.y) / scalar(2);
+        if (!detail::all_finite(q1) || !detail::all_finite(p1))
+            throw integration_error("semiexplicit_stepper: " + at() + " produced a non-finite state; the state is left "
+                                                                    "at the start of the step",
+                                    steps_ + 1, double(t_end - primal(dt)));
+        x.q = std::move(q1);
+        x.p = std::move(p1);
+        divergence_ = 2 * (detail::primal_norm(mu_q) + detail::primal_norm(mu_p));
+        max_divergence_ = std::max(max_divergence_, divergence_);
+        ++steps_;
+        elapsed_ += primal(dt);
+    }
+
+    semiexplicit_options options_;
+    std::uint64_t iterations_ = 0;
+    int max_iterations_seen_ = 0;
+    std::size_t steps_ = 0;
+    P elapsed_ = 0, divergence_ = 0, max_divergence_ = 0;
+};
+
+template <class State, class H>
+semiexplicit_stepper<H, State> make_semiexplicit_stepper(H h, const table& t, semiexplicit_options o = {}) {
+    return semiexplicit_stepper<H, State>(std::move(h), t, o);
+}
+
+}  // namespace sympl
