@@ -1,0 +1,467 @@
+#pragma once
+// The exact Kepler flow: two-body motion of a body about a central mass GM
+// over a time h (either sign), elliptic, parabolic or hyperbolic, in
+// universal variables (Stumpff 1959; Danby 1988, "Fundamentals of Celestial
+// Mechanics", 2nd ed., ch. 6.7-6.9). It is the drift of the Wisdom-Holman
+// splitting: each planet moves on its Kepler orbit about the star.
+//
+// With r0 = |r|, eta0 = r.v, beta = 2 GM / r0 - |v|^2 (= GM / a) and
+// zeta0 = GM - beta r0, the universal anomaly s solves Kepler's equation
+//     t(s) = r0 G1(s) + eta0 G2(s) + GM G3(s) = h,      G_n(s) = s^n c_n(beta s^2)
+// (Danby 1988, eq. 6.9.16), whose derivative t'(s) = r(s) = r0 G0 + eta0 G1 + GM G2
+// is the distance, so t is increasing and the root unique. Then the f and g
+// functions (Danby 1988, eq. 6.9.20-6.9.22)
+//     f = 1 - GM G2 / r0,   g = r0 G1 + eta0 G2,   fdot = -GM G1 / (r r0),   gdot = 1 - GM G2 / r
+// give r(h) = f r0 + g v0, v(h) = fdot r0 + gdot v0.
+//
+// Accuracy: an elliptic drift longer than half a period is first reduced by
+// whole periods (the flow is periodic; Wisdom & Hernandez 2015, MNRAS 453,
+// 3015, do the same), which keeps beta s^2 <= (pi + 2)^2; the Stumpff functions
+// are summed as series at |x| <= 0.1 and brought back up by the quarter-angle
+// recurrences (Danby 1988, sec. 6.9). The root is found by Danby's quartic
+// iteration (Danby 1988, eq. 6.6.7, after Danby & Burkardt 1983) from a
+// starting value (a cubic in s for short drifts, Danby's "M + 0.85 e" starter
+// otherwise), kept inside a bracket [lo, hi] of the root and replaced by
+// bisection whenever it leaves the bracket or stalls: the solve always ends,
+// in at most kepler_max_iterations evaluations.
+//
+// kepler_drift_all drifts many independent bodies held as structure of arrays:
+// lanes of `kepler_lanes` bodies run a fixed number of quartic iterations
+// together, with a per-lane convergence mask (the compiler vectorises the
+// lane loops); a lane that has not converged by then is redone by the scalar
+// drift with its bracket. Both give the same state to rounding.
+//
+// Bad input (a body at the central mass, GM <= 0, non-finite numbers) is an
+// invalid_argument naming the value and, in kepler_drift_all, the body.
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <span>
+#include <string>
+#include <type_traits>
+
+#include <Eigen/Core>
+
+#include "../core/error.hpp"
+
+namespace sympl {
+
+// Evaluations of Kepler's equation the scalar solve may spend (quartic steps
+// and bisections together); a bracket of doubles is bisected to its last bit
+// well within it.
+inline constexpr int kepler_max_iterations = 300;
+// Bodies per lane group of kepler_drift_all, and the quartic iterations all
+// lanes run together before a lane falls back to the scalar solve.
+inline constexpr int kepler_lanes = 8;
+inline constexpr int kepler_lane_iterations = 6;
+
+namespace detail {
+
+// Stumpff's functions c_k(x) = sum_j (-x)^j / (2j + k)!, k = 0..3, for W
+// lanes at once (W = 1: one body). x is divided by 4 until |x| <= 0.1, where
+// nine terms reach below long double's rounding (0.1^9 / 18! < 1e-25), and the
+// quarter-angle recurrences bring it back (Danby 1988, sec. 6.9):
+//     c3(4x) = (c2(x) + c0(x) c3(x)) / 4,  c2(4x) = c1(x)^2 / 2,  c1(4x) = c0(x) c1(x).
+// c0 is taken at each level as 1 - x c2 rather than by c0(4x) = 2 c0(x)^2 - 1,
+// which multiplies c0's absolute error by 4 per level; this way every c_k
+// keeps an absolute error of a few units of rounding for |x| up to (pi + 2)^2.
+template <class S, int W>
+void stumpff_lanes(const S* x_in, S* c0, S* c1, S* c2, S* c3) {
+    S x[W];
+    int levels[W];
+    int most = 0;
+    for (int l = 0; l < W; ++l) {
+        x[l] = x_in[l];
+        levels[l] = 0;
+    }
+    // |x| <= max double needs at most ~520 quarterings; finite x always ends.
+    for (bool more = true; more;) {
+        more = false;
+        for (int l = 0; l < W; ++l) {
+            const bool big = std::fabs(x[l]) > S(0.1);
+            x[l] = big ? x[l] * S(0.25) : x[l];
+            levels[l] += big ? 1 : 0;
+            more = more || big;
+        }
+        most += more ? 1 : 0;
+        if (most > 1100) break;  // only a non-finite x gets here
+    }
+    for (int l = 0; l < W; ++l) {
+        const S y = x[l];
+        // Horner: c2 = 1/2! - y/4! + y^2/6! - ..., c3 = 1/3! - y/5! + ...
+        S s2 = S(1) / S(6402373705728000.0L);   // 1/18!
+        S s3 = S(1) / S(121645100408832000.0L); // 1/19!
+        constexpr long double f2[] = {1.0L / 2, 1.0L / 24, 1.0L / 720, 1.0L / 40320, 1.0L / 3628800,
+                                      1.0L / 479001600, 1.0L / 87178291200, 1.0L / 20922789888000};
+        constexpr long double f3[] = {1.0L / 6, 1.0L / 120, 1.0L / 5040, 1.0L / 362880, 1.0L / 39916800,
+                                      1.0L / 6227020800, 1.0L / 1307674368000, 1.0L / 355687428096000};
+        for (int j = 7; j >= 0; --j) {
+            s2 = S(f2[j]) - y * s2;
+            s3 = S(f3[j]) - y * s3;
+        }
+        c2[l] = s2;
+        c3[l] = s3;
+        c1[l] = 1 - y * s3;
+        c0[l] = 1 - y * s2;
+    }
+    for (int level = most - 1; level >= 0; --level)
+        for (int l = 0; l < W; ++l) {
+            const bool up = level < levels[l];
+            const S n3 = (c2[l] + c0[l] * c3[l]) * S(0.25);
+            const S n2 = c1[l] * c1[l] * S(0.5);
+            const S n1 = c0[l] * c1[l];
+            const S nx = x[l] * 4;
+            const S n0 = 1 - nx * n2;
+            c3[l] = up ? n3 : c3[l];
+            c2[l] = up ? n2 : c2[l];
+            c1[l] = up ? n1 : c1[l];
+            c0[l] = up ? n0 : c0[l];
+            x[l] = up ? nx : x[l];
+        }
+}
+
+// What the solve needs of one orbit, from r0, v0, GM and h.
+template <class S>
+struct kepler_orbit {
+    S r0, eta0, beta, zeta0, gm, h;  // h reduced by whole periods when elliptic
+};
+
+template <class S>
+kepler_orbit<S> make_orbit(S r0, S eta0, S v2, S gm, S h) {
+    kepler_orbit<S> o{r0, eta0, 2 * gm / r0 - v2, S(0), gm, h};
+    o.zeta0 = gm - o.beta * r0;
+    if (o.beta > 0) {
+        // Whole periods P = 2 pi GM / beta^(3/2) taken off (the flow is
+        // periodic): |h| <= P/2 keeps |beta s^2| <= (pi + 2)^2.
+        const S period = S(2 * 3.14159265358979323846264338327950288L) * gm / (o.beta * std::sqrt(o.beta));
+        if (std::fabs(h) > period / 2) {
+            const S turns = std::nearbyint(h / period);
+            o.h = std::fma(-turns, period, h);
+        }
+    }
+    return o;
+}
+
+// Kepler's equation and its derivatives at s (Danby 1988, eq. 6.9.16-6.9.19).
+template <class S>
+struct kepler_residual {
+    S f, r, dr, ddr;      // t(s) - h, t' = r, t'' = r', t''' = r''
+    S noise;              // rounding level of f
+    S c0, g1, g2;         // G0 = c0, G1, G2 at s
+};
+
+template <class S>
+kepler_residual<S> residual_at(const kepler_orbit<S>& o, S s) {
+    S x = o.beta * s * s, c0, c1, c2, c3;
+    stumpff_lanes<S, 1>(&x, &c0, &c1, &c2, &c3);
+    kepler_residual<S> k;
+    const S ss = s * s;
+    const S g1 = s * c1, g2 = ss * c2, g3 = ss * s * c3;
+    const S a = o.r0 * g1, b = o.eta0 * g2, c = o.gm * g3;
+    k.f = (a + b + c) - o.h;
+    k.noise = 8 * std::numeric_limits<S>::epsilon() * (std::fabs(a) + std::fabs(b) + std::fabs(c) + std::fabs(o.h));
+    k.r = o.r0 * c0 + o.eta0 * g1 + o.gm * g2;
+    k.dr = o.eta0 * c0 + o.zeta0 * g1;
+    k.ddr = o.zeta0 * c0 - o.eta0 * o.beta * g1;
+    k.c0 = c0;
+    k.g1 = g1;
+    k.g2 = g2;
+    return k;
+}
+
+// Danby's quartic correction (Danby 1988, eq. 6.6.7): Newton, then two
+// refinements with the second and third derivatives.
+template <class S>
+S quartic_step(S f, S r, S dr, S ddr) {
+    const S d1 = -f / r;
+    const S d2 = -f / (r + d1 * dr / 2);
+    return -f / (r + d2 * dr / 2 + d2 * d2 * ddr / 6);
+}
+
+// Starting value of s. For a short arc (|beta| s^2 <= 1) the cubic
+// r0 s + eta0 s^2/2 + zeta0 s^3/6 = h, Kepler's equation to third order in s
+// (Danby 1988, sec. 6.9), by Newton from s = h / r0. Otherwise the anomaly:
+// elliptic E = M + 0.85 e sign(sin M), hyperbolic F = sign(M) ln(2|M|/e + 1.8)
+// (Danby 1988, sec. 6.6 and 6.9; Danby & Burkardt 1983), as s = dE / sqrt(beta).
+template <class S>
+S starting_value(const kepler_orbit<S>& o) {
+    S s = o.h / o.r0;
+    for (int i = 0; i < 3; ++i) {
+        const S p = s * (o.r0 + s * (o.eta0 / 2 + s * o.zeta0 / 6)) - o.h;
+        const S dp = o.r0 + s * (o.eta0 + s * o.zeta0 / 2);
+        if (!(dp > 0)) break;
+        s -= p / dp;
+    }
+    if (std::isfinite(s) && std::fabs(o.beta) * s * s <= 1) return s;
+    constexpr S pi = S(3.14159265358979323846264338327950288L);
+    if (o.beta > 0) {
+        const S sb = std::sqrt(o.beta), n = o.beta * sb / o.gm;
+        const S ec = o.zeta0 / o.gm, es = o.eta0 * sb / o.gm, e = std::hypot(ec, es);
+        const S e0 = std::atan2(es, ec), m1 = e0 - es + n * o.h;
+        const S m = std::remainder(m1, 2 * pi);
+        const S e1 = m + S(0.85) * e * (std::sin(m) >= 0 ? 1 : -1);
+        return (e1 + (m1 - m) - e0) / sb;
+    }
+    if (o.beta < 0) {
+        const S sb = std::sqrt(-o.beta), n = -o.beta * sb / o.gm;
+        const S ec = o.zeta0 / o.gm, es = o.eta0 * sb / o.gm;
+        const S e = std::sqrt(std::max(S(0), (ec - es) * (ec + es)));
+        if (e > 0) {
+            const S f0 = std::asinh(es / e), m1 = es - f0 + n * o.h;
+            const S f1 = (m1 >= 0 ? 1 : -1) * std::log(2 * std::fabs(m1) / e + S(1.8));
+            return (f1 - f0) / sb;
+        }
+    }
+    return s;
+}
+
+// Kepler's equation solved for s inside a bracket of its root: quartic steps
+// while they stay inside and shrink, bisection (geometric while the bracket
+// spans decades) when not. Ends in at most kepler_max_iterations evaluations.
+template <class S>
+kepler_residual<S> solve_universal(const kepler_orbit<S>& o, S guess) {
+    constexpr S inf = std::numeric_limits<S>::infinity(), eps = std::numeric_limits<S>::epsilon();
+    const bool forward = o.h > 0;
+    // t(s) increases and t(0) = 0: the root has the sign of h.
+    S lo = forward ? S(0) : -inf, hi = forward ? inf : S(0);
+    S s = (std::isfinite(guess) && guess > lo && guess < hi) ? guess : o.h / o.r0;
+    kepler_residual<S> best{};
+    S best_f = inf, last_step = inf, step_before = inf;
+    for (int it = 0; it < kepler_max_iterations; ++it) {
+        const kepler_residual<S> k = residual_at(o, s);
+        bool done = false;
+        if (!std::isfinite(k.f) || !std::isfinite(k.r)) {
+            // Only |s| far beyond the root overflows the c_k: the root lies nearer 0.
+            (forward ? hi : lo) = s;
+        } else {
+            if (std::fabs(k.f) < best_f) { best_f = std::fabs(k.f); best = k; }
+            if (k.f < 0) lo = s; else hi = s;
+            done = std::fabs(k.f) <= k.noise || std::fabs(k.f / k.r) <= 4 * eps * std::fabs(s);
+        }
+        if (done) return k;
+        S next = s;
+        if (std::isfinite(k.f) && std::isfinite(k.r)) next = s + quartic_step(k.f, k.r, k.dr, k.ddr);
+        const bool stalls = it >= 6 && std::fabs(next - s) > step_before / 2;
+        if (!(next > lo && next < hi) || stalls) {
+            if (std::isinf(hi)) next = std::max(2 * lo, o.h / o.r0);        // forward, root beyond lo
+            else if (std::isinf(lo)) next = std::min(2 * hi, o.h / o.r0);   // backward, root below hi
+            else if (lo == 0 || hi == 0) next = (lo + hi) / 4;              // towards the root's sign
+            else if (std::fabs(hi) > 4 * std::fabs(lo) || std::fabs(lo) > 4 * std::fabs(hi))
+                next = (forward ? 1 : -1) * std::sqrt(lo * hi);            // geometric: decades first
+            else next = lo + (hi - lo) / 2;
+            if (!(next > lo && next < hi)) return best_f < inf ? best : k;  // bracket down to adjacent doubles
+        }
+        step_before = last_step;
+        last_step = std::fabs(next - s);
+        s = next;
+    }
+    return best;
+}
+
+template <class S>
+std::string body_text(std::ptrdiff_t body) {
+    return body < 0 ? std::string() : " of body " + std::to_string(body);
+}
+
+template <class S>
+void check_kepler_input(const S* r, const S* v, S gm, S h, std::ptrdiff_t body) {
+    const char* axis[] = {"x", "y", "z"};
+    if (!(std::isfinite(gm) && gm > 0))
+        throw invalid_argument("kepler_drift: GM = " + number_text(gm) + "; expected a finite GM > 0");
+    if (!std::isfinite(h))
+        throw invalid_argument("kepler_drift: h = " + number_text(h) + "; expected a finite time");
+    for (int i = 0; i < 3; ++i) {
+        if (!std::isfinite(r[i]))
+            throw invalid_argument("kepler_drift: position " + std::string(axis[i]) + body_text<S>(body) + " = " +
+                                   number_text(r[i]) + "; expected a finite number");
+        if (!std::isfinite(v[i]))
+            throw invalid_argument("kepler_drift: velocity " + std::string(axis[i]) + body_text<S>(body) + " = " +
+                                   number_text(v[i]) + "; expected a finite number");
+    }
+    const S r2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
+    if (!(r2 > 0) || !std::isfinite(r2))
+        throw invalid_argument("kepler_drift: |r|" + body_text<S>(body) + " = " + number_text(std::sqrt(r2)) +
+                               " (position (" + number_text(r[0]) + ", " + number_text(r[1]) + ", " +
+                               number_text(r[2]) + ")); expected a body away from the central mass, 0 < |r|^2 < " +
+                               number_text(std::numeric_limits<S>::max()));
+}
+
+// r(h) = f r0 + g v0, v(h) = fdot r0 + gdot v0 from the solved G's (Danby
+// 1988, eq. 6.9.20-6.9.22), written as increments so that a short drift adds
+// a small change to r0 and v0.
+template <class S>
+void apply_f_and_g(S* r, S* v, S r0, S eta0, S gm, S g1, S g2, S rr) {
+    const S fm1 = -gm * g2 / r0;
+    const S g = r0 * g1 + eta0 * g2;
+    const S fdot = -gm * g1 / (rr * r0);
+    const S gdm1 = -gm * g2 / rr;
+    for (int i = 0; i < 3; ++i) {
+        const S ri = r[i], vi = v[i];
+        r[i] = ri + (fm1 * ri + g * vi);
+        v[i] = vi + (fdot * ri + gdm1 * vi);
+    }
+}
+
+template <class S>
+void kepler_drift_body(S* r, S* v, S gm, S h, std::ptrdiff_t body) {
+    check_kepler_input(r, v, gm, h, body);
+    if (h == 0) return;
+    const S r0 = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+    const S eta0 = r[0] * v[0] + r[1] * v[1] + r[2] * v[2];
+    const S v2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    const kepler_orbit<S> o = make_orbit(r0, eta0, v2, gm, h);
+    if (o.h == 0) return;  // whole periods: back at the start
+    const kepler_residual<S> k = solve_universal(o, starting_value(o));
+    apply_f_and_g(r, v, r0, eta0, gm, k.g1, k.g2, k.r);
+    for (int i = 0; i < 3; ++i)
+        if (!std::isfinite(r[i]) || !std::isfinite(v[i]))
+            throw invalid_argument("kepler_drift: h = " + number_text(h) + body_text<S>(body) +
+                                   " carries the body beyond the largest finite number");
+}
+
+}  // namespace detail
+
+// The exact Kepler drift of one body about GM over time h, in place: r and v
+// are the position and velocity relative to the central mass.
+template <class S>
+    requires std::is_floating_point_v<S>
+void kepler_drift(Eigen::Matrix<S, 3, 1>& r, Eigen::Matrix<S, 3, 1>& v, S gm, S h) {
+    detail::kepler_drift_body(r.data(), v.data(), gm, h, -1);
+}
+
+// Bodies as structure of arrays: body i is at (x[i], y[i], z[i]) with
+// velocity (vx[i], vy[i], vz[i]); all six spans of equal length.
+template <class S>
+struct kepler_bodies {
+    std::span<S> x, y, z, vx, vy, vz;
+    std::size_t size() const { return x.size(); }
+};
+
+namespace detail {
+template <class S, class GM>
+std::size_t kepler_drift_lanes(const kepler_bodies<S>& b, GM gm_of, S h) {
+    const std::size_t n = b.size();
+    const std::span<S>* parts[] = {&b.y, &b.z, &b.vx, &b.vy, &b.vz};
+    const char* names[] = {"y", "z", "vx", "vy", "vz"};
+    for (int i = 0; i < 5; ++i)
+        if (parts[i]->size() != n)
+            throw invalid_argument("kepler_drift_all: " + std::to_string(parts[i]->size()) + " values in " + names[i] +
+                                   " and " + std::to_string(n) + " in x; expected one per body in each");
+    for (std::size_t i = 0; i < n; ++i) {
+        const S r[3] = {b.x[i], b.y[i], b.z[i]}, v[3] = {b.vx[i], b.vy[i], b.vz[i]};
+        check_kepler_input(r, v, gm_of(i), h, std::ptrdiff_t(i));
+    }
+    if (h == 0) return 0;
+    std::size_t fallbacks = 0;
+    constexpr int W = kepler_lanes;
+    constexpr S eps = std::numeric_limits<S>::epsilon();
+    std::size_t first = 0;
+    for (; first + W <= n; first += W) {
+        S rx[W], ry[W], rz[W], ux[W], uy[W], uz[W], r0[W], eta0[W], v2[W], gm[W];
+        for (int l = 0; l < W; ++l) {
+            const std::size_t i = first + std::size_t(l);
+            rx[l] = b.x[i]; ry[l] = b.y[i]; rz[l] = b.z[i];
+            ux[l] = b.vx[i]; uy[l] = b.vy[i]; uz[l] = b.vz[i];
+            gm[l] = gm_of(i);
+        }
+        for (int l = 0; l < W; ++l) {
+            r0[l] = std::sqrt(rx[l] * rx[l] + ry[l] * ry[l] + rz[l] * rz[l]);
+            eta0[l] = rx[l] * ux[l] + ry[l] * uy[l] + rz[l] * uz[l];
+            v2[l] = ux[l] * ux[l] + uy[l] * uy[l] + uz[l] * uz[l];
+        }
+        // Orbit and starting value per lane (period reduction, logarithms and
+        // trigonometry of the starter: scalar, once per drift).
+        S beta[W], zeta0[W], hh[W], s[W];
+        for (int l = 0; l < W; ++l) {
+            const kepler_orbit<S> o = make_orbit(r0[l], eta0[l], v2[l], gm[l], h);
+            beta[l] = o.beta;
+            zeta0[l] = o.zeta0;
+            hh[l] = o.h;
+            s[l] = starting_value(o);
+        }
+        // A fixed number of quartic iterations in every lane together; a lane
+        // stops moving once converged (the test of solve_universal).
+        bool active[W];
+        S c0[W], c1[W], c2[W], c3[W], g1[W], g2[W], rr[W];
+        for (int l = 0; l < W; ++l) {
+            active[l] = hh[l] != 0;
+            g1[l] = g2[l] = 0;
+            rr[l] = r0[l];
+        }
+        for (int it = 0; it < kepler_lane_iterations; ++it) {
+            S x[W];
+            for (int l = 0; l < W; ++l) x[l] = beta[l] * s[l] * s[l];
+            stumpff_lanes<S, W>(x, c0, c1, c2, c3);
+            bool any = false;
+            for (int l = 0; l < W; ++l) {
+                const S ss = s[l] * s[l];
+                const S G1 = s[l] * c1[l], G2 = ss * c2[l], G3 = ss * s[l] * c3[l];
+                const S a = r0[l] * G1, bb = eta0[l] * G2, c = gm[l] * G3;
+                const S f = (a + bb + c) - hh[l];
+                const S noise = 8 * eps * (std::fabs(a) + std::fabs(bb) + std::fabs(c) + std::fabs(hh[l]));
+                const S r = r0[l] * c0[l] + eta0[l] * G1 + gm[l] * G2;
+                const S dr = eta0[l] * c0[l] + zeta0[l] * G1;
+                const S ddr = zeta0[l] * c0[l] - eta0[l] * beta[l] * G1;
+                const S d1 = -f / r;
+                const S d2 = -f / (r + d1 * dr / 2);
+                const S d3 = -f / (r + d2 * dr / 2 + d2 * d2 * ddr / 6);
+                const bool converged = std::fabs(f) <= noise || std::fabs(d1) <= 4 * eps * std::fabs(s[l]);
+                const bool take = active[l];
+                g1[l] = take ? G1 : g1[l];
+                g2[l] = take ? G2 : g2[l];
+                rr[l] = take ? r : rr[l];
+                s[l] = (take && !converged) ? s[l] + d3 : s[l];
+                active[l] = take && !converged;
+                any = any || active[l];
+            }
+            if (!any) break;
+        }
+        for (int l = 0; l < W; ++l) {
+            S r[3] = {rx[l], ry[l], rz[l]}, v[3] = {ux[l], uy[l], uz[l]};
+            const std::size_t i = first + std::size_t(l);
+            const bool finite = std::isfinite(g1[l]) && std::isfinite(g2[l]) && std::isfinite(rr[l]) && rr[l] > 0;
+            if (active[l] || !finite) {
+                ++fallbacks;
+                kepler_drift_body(r, v, gm[l], h, std::ptrdiff_t(i));  // the bracketed scalar solve
+            } else if (hh[l] != 0) {
+                apply_f_and_g(r, v, r0[l], eta0[l], gm[l], g1[l], g2[l], rr[l]);
+                for (int k = 0; k < 3; ++k)
+                    if (!std::isfinite(r[k]) || !std::isfinite(v[k])) kepler_drift_body(r, v, gm[l], h, std::ptrdiff_t(i));
+            }
+            b.x[i] = r[0]; b.y[i] = r[1]; b.z[i] = r[2];
+            b.vx[i] = v[0]; b.vy[i] = v[1]; b.vz[i] = v[2];
+        }
+    }
+    for (std::size_t i = first; i < n; ++i) {  // the last n mod W bodies
+        S r[3] = {b.x[i], b.y[i], b.z[i]}, v[3] = {b.vx[i], b.vy[i], b.vz[i]};
+        kepler_drift_body(r, v, gm_of(i), h, std::ptrdiff_t(i));
+        b.x[i] = r[0]; b.y[i] = r[1]; b.z[i] = r[2];
+        b.vx[i] = v[0]; b.vy[i] = v[1]; b.vz[i] = v[2];
+    }
+    return fallbacks;
+}
+}  // namespace detail
+
+// Every body drifted about the same GM over h (democratic heliocentric
+// coordinates: each planet about the star). Returns how many bodies the
+// lanes left to the scalar solve (0 for well-behaved orbits and drifts).
+template <class S>
+    requires std::is_floating_point_v<S>
+std::size_t kepler_drift_all(const kepler_bodies<S>& bodies, S gm, S h) {
+    return detail::kepler_drift_lanes(bodies, [gm](std::size_t) { return gm; }, h);
+}
+
+// Body i drifted about gm[i] (Jacobi coordinates: each planet about the
+// interior mass).
+template <class S>
+    requires std::is_floating_point_v<S>
+std::size_t kepler_drift_all(const kepler_bodies<S>& bodies, std::span<const S> gm, S h) {
+    if (gm.size() != bodies.size())
+        throw invalid_argument("kepler_drift_all: " + std::to_string(gm.size()) + " values of GM for " +
+                               std::to_string(bodies.size()) + " bodies; expected one per body");
+    return detail::kepler_drift_lanes(bodies, [gm](std::size_t i) { return gm[i]; }, h);
+}
+
+}  // namespace sympl

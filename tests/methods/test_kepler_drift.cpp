@@ -1,0 +1,561 @@
+// The exact Kepler drift (universal variables, Danby 1988 ch. 6.9) against the
+// closed-form orbit from orbital elements in long double; its invariants,
+// time reversal, the batched drift against the scalar one, a solve that
+// Newton alone cannot finish; and the planetary coordinates both ways.
+//
+// The bound on the drift's error. Rounding the inputs (position, velocity,
+// GM, h) by a relative eps/2 each moves the exact result by up to
+// eps/2 * kappa * |r(h)|, where
+//     kappa = sum_u |u| |d r(h) / d u| / |r(h)|,  u over x, y, z, vx, vy, vz, GM, h,
+// is the componentwise relative condition number of the flow (measured here
+// by finite differences of a long-double reference). kappa contains what makes
+// a Kepler drift hard: the phase error growing with the number of periods
+// (d r / d h ~ |v| h), the pericentre passage of an eccentric orbit, the
+// cancellation in beta = 2GM/r - v^2 near a parabola. The drift adds the
+// rounding of its own representation r(h) = f r0 + g v0: f and g (from
+// Stumpff functions good to a few eps, and s solved to rounding) carry a few
+// eps relative error (f = 1 - GM G2 / r0 an absolute error of eps), so the
+// sum r0 + (f - 1) r0 + g v0 an error of a few eps times
+//     c_fg = ((2 + |f|) |r0| + |g| |v0|) / |r(h)|,
+// large where a hyperbolic body comes in from far and leaves again (f ~ -cosh
+// of the anomaly change) or an eccentric one falls from apocentre to
+// pericentre (|r(h)| << |r0|), although kappa may be small there. The bound:
+//     |r - r_exact| / |r_exact| <= C eps (kappa + c_fg),   C = 32
+// (a few tens of roundings along the way). Measured worst: see the messages.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include <sympl/methods/kepler_drift.hpp>
+#include <sympl/methods/planetary_coordinates.hpp>
+
+using namespace sympl;
+
+namespace {
+using ld = long double;
+using V3 = Eigen::Matrix<ld, 3, 1>;
+using V3d = Eigen::Vector3d;
+constexpr double eps = std::numeric_limits<double>::epsilon();
+constexpr ld pi = 3.14159265358979323846264338327950288L;
+
+struct ld_state {
+    V3 r, v;
+};
+
+// ---- The closed-form orbit from elements (long double) ----------------------
+
+// E - e sin E = M (e < 1) or e sinh F - F = M (e > 1), Newton kept inside a
+// bracket of the root.
+ld solve_kepler(ld e, ld M) {
+    ld lo, hi, E;
+    if (e < 1) {
+        lo = M - 2, hi = M + 2;
+        E = M + 0.85L * e * (std::sin(M) >= 0 ? 1 : -1);
+    } else {
+        lo = M >= 0 ? 0 : -std::log(2 * std::fabs(M) / e + 2) - 1;
+        hi = M >= 0 ? std::log(2 * std::fabs(M) / e + 2) + 1 : 0;
+        E = (M >= 0 ? 1 : -1) * std::log(2 * std::fabs(M) / e + 1.8L);
+    }
+    for (int i = 0; i < 200; ++i) {
+        const ld f = e < 1 ? E - e * std::sin(E) - M : e * std::sinh(E) - E - M;
+        const ld d = e < 1 ? 1 - e * std::cos(E) : e * std::cosh(E) - 1;
+        (f < 0 ? lo : hi) = E;
+        ld next = E - f / d;
+        if (!(next > lo && next < hi)) next = (lo + hi) / 2;
+        if (std::fabs(next - E) <= 2 * std::numeric_limits<ld>::epsilon() * (1 + std::fabs(E)) || next == E)
+            return next;
+        E = next;
+    }
+    return E;
+}
+
+struct elements {
+    ld gm, a, e, inclination, node, periapsis;  // a < 0: hyperbolic
+    ld mean_motion() const { return std::sqrt(gm / std::fabs(a * a * a)); }
+};
+
+// Position and velocity at mean anomaly M (Danby 1988, sec. 6.3 and 6.5).
+ld_state state_at(const elements& o, ld M) {
+    ld x, y, vx, vy;
+    if (o.e < 1) {
+        const ld E = solve_kepler(o.e, std::remainder(M, 2 * pi));
+        const ld b = std::sqrt((1 - o.e) * (1 + o.e)), r = o.a * (1 - o.e * std::cos(E)), k = std::sqrt(o.gm * o.a) / r;
+        x = o.a * (std::cos(E) - o.e), y = o.a * b * std::sin(E);
+        vx = -k * std::sin(E), vy = k * b * std::cos(E);
+    } else {
+        const ld A = -o.a, F = solve_kepler(o.e, M);
+        const ld b = std::sqrt((o.e - 1) * (o.e + 1)), r = A * (o.e * std::cosh(F) - 1), k = std::sqrt(o.gm * A) / r;
+        x = A * (o.e - std::cosh(F)), y = A * b * std::sinh(F);
+        vx = -k * std::sinh(F), vy = k * b * std::cosh(F);
+    }
+    const Eigen::Matrix<ld, 3, 3> R = (Eigen::AngleAxis<ld>(o.node, V3::UnitZ()) *
+                                       Eigen::AngleAxis<ld>(o.inclination, V3::UnitX()) *
+                                       Eigen::AngleAxis<ld>(o.periapsis, V3::UnitZ()))
+                                          .toRotationMatrix();
+    return {R * V3(x, y, 0), R * V3(vx, vy, 0)};
+}
+
+// ---- The same flow from a state: f and g with the eccentric (hyperbolic)
+// anomaly difference X (Danby 1988, sec. 6.8), for the condition number -----
+//   elliptic:   n h = X - ec sin X + es (1 - cos X),  f = 1 - a (1 - cos X) / r0,   g = h - (X - sin X) / n
+//   hyperbolic: n h = ec sinh X + es (cosh X - 1) - X, f = 1 - |a| (cosh X - 1) / r0, g = h - (sinh X - X) / n
+V3 flow_position(const ld_state& x, ld gm, ld h) {
+    const ld r0 = x.r.norm(), eta = x.r.dot(x.v), a = 1 / (2 / r0 - x.v.squaredNorm() / gm);
+    const ld A = std::fabs(a), n = std::sqrt(gm / (A * A * A));
+    const ld ec = 1 - r0 / a, es = eta / std::sqrt(gm * A);
+    const bool ell = a > 0;
+    const ld M = ell ? std::remainder(n * h, 2 * pi) : n * h;
+    const auto kepler = [&](ld X) {
+        return ell ? X - ec * std::sin(X) + es * (1 - std::cos(X)) - M : ec * std::sinh(X) + es * (std::cosh(X) - 1) - X - M;
+    };
+    const auto slope = [&](ld X) {
+        return ell ? 1 - ec * std::cos(X) + es * std::sin(X) : ec * std::cosh(X) + es * std::sinh(X) - 1;
+    };
+    ld lo = M - 2, hi = M + 2;  // elliptic: |X - M| <= 2e
+    if (!ell) {
+        lo = M >= 0 ? 0 : -1, hi = M >= 0 ? 1 : 0;
+        while (kepler(hi) < 0) hi *= 2;
+        while (kepler(lo) > 0) lo *= 2;
+    }
+    ld X = (lo + hi) / 2;
+    for (int i = 0; i < 400; ++i) {
+        const ld f = kepler(X);
+        (f < 0 ? lo : hi) = X;
+        ld next = X - f / slope(X);
+        if (!(next > lo && next < hi)) next = (lo + hi) / 2;
+        if (next == X || std::fabs(next - X) <= 2 * std::numeric_limits<ld>::epsilon() * (1 + std::fabs(X))) break;
+        X = next;
+    }
+    const ld t = M / n;  // the reduced time
+    const ld f = ell ? 1 - a * (1 - std::cos(X)) / r0 : 1 - A * (std::cosh(X) - 1) / r0;
+    const ld g = ell ? t - (X - std::sin(X)) / n : t - (std::sinh(X) - X) / n;
+    return f * x.r + g * x.v;
+}
+
+// kappa of the comment at the top, by forward differences of relative size 1e-8
+// (long double: the differences are good to ~1e-10 relative).
+ld condition_number(const ld_state& x, ld gm, ld h) {
+    const ld d = 1e-8L;
+    const V3 base = flow_position(x, gm, h);
+    ld k = 0;
+    for (int j = 0; j < 6; ++j) {
+        ld_state y = x;
+        ld& u = j < 3 ? y.r[j] : y.v[j - 3];
+        u *= 1 + d;
+        k += (flow_position(y, gm, h) - base).norm() / d;
+    }
+    k += (flow_position(x, gm * (1 + d), h) - base).norm() / d;
+    k += (flow_position(x, gm, h * (1 + d)) - base).norm() / d;
+    return k / base.norm();
+}
+
+struct sample {
+    elements el;
+    ld M0, h;
+};
+
+// Random elements: 95% elliptic with e in [0, 0.999], 5% hyperbolic with e in
+// (1, 5]; random orientation and mean anomaly; h up to 5 periods (5 x 2 pi / n
+// when hyperbolic), a third of them short (up to a hundredth of a period, the
+// Wisdom-Holman case); GM = 1 or the Sun's in AU and days.
+sample random_sample(std::mt19937_64& rng) {
+    std::uniform_real_distribution<double> u(0, 1);
+    sample s;
+    const bool hyperbolic = u(rng) < 0.05;
+    s.el.gm = u(rng) < 0.5 ? 1.0L : 2.95912208286e-4L;
+    s.el.e = hyperbolic ? 1 + 4 * (1 - u(rng)) : 0.999 * u(rng);
+    const ld size = std::pow(10.0L, ld(-1 + 3 * u(rng)));
+    s.el.a = hyperbolic ? -size : size;
+    s.el.inclination = pi * u(rng);
+    s.el.node = 2 * pi * u(rng);
+    s.el.periapsis = 2 * pi * u(rng);
+    s.M0 = hyperbolic ? 10 * (2 * u(rng) - 1) : pi * (2 * u(rng) - 1);
+    const ld span = (u(rng) < 1.0 / 3 ? 0.01L : 5.0L) * 2 * pi / s.el.mean_motion();
+    s.h = span * (2 * u(rng) - 1);
+    return s;
+}
+
+ld_state rounded(const ld_state& x) {
+    return {x.r.cast<double>().cast<ld>(), x.v.cast<double>().cast<ld>()};
+}
+
+// The cancellation factors of r1 = f r0 + g v0 and v1 = fdot r0 + gdot v0,
+// with f, g, fdot, gdot read off r1 and v1 by cross products with r0 x v0.
+struct cancellation {
+    ld position, velocity;
+};
+cancellation cancellation_of(const ld_state& x0, const ld_state& x1) {
+    const ld L = x0.r.cross(x0.v).norm(), r0 = x0.r.norm(), v0 = x0.v.norm();
+    const ld f = x1.r.cross(x0.v).norm() / L, g = x1.r.cross(x0.r).norm() / L;
+    const ld fdot = x1.v.cross(x0.v).norm() / L, gdot = x1.v.cross(x0.r).norm() / L;
+    // The drift adds 1 r0 + (f - 1) r0 + g v0 (and likewise for v): terms up to
+    // (2 + |f|) r0 and (2 + |gdot|) v0 whose sum is r1 (v1).
+    return {((2 + f) * r0 + g * v0) / x1.r.norm(), (fdot * r0 + (2 + gdot) * v0) / x1.v.norm()};
+}
+
+ld energy(const ld_state& x, ld gm) { return x.v.squaredNorm() / 2 - gm / x.r.norm(); }
+
+void drift(ld_state& x, double gm, double h) {
+    V3d r = x.r.cast<double>(), v = x.v.cast<double>();
+    kepler_drift(r, v, gm, h);
+    x = {r.cast<ld>(), v.cast<ld>()};
+}
+}  // namespace
+
+TEST_CASE("kepler_drift: 10^5 random orbits against the closed form, error <= 32 eps (kappa + c_fg)") {
+    // 10^5 here (each sample also costs ten long-double Kepler solves for kappa);
+    // bench/bench_kepler_drift.cpp drifts 10^6.
+    std::mt19937_64 rng(20240530);
+    const int n = 100000;
+    double worst = 0, worst_error = 0, worst_kappa = 0, largest_kappa = 0, reference_worst = 0;
+    for (int i = 0; i < n; ++i) {
+        const sample s = random_sample(rng);
+        const ld_state exact0 = state_at(s.el, s.M0);
+        const ld_state x0 = rounded(exact0);
+        const double gm = double(s.el.gm), h = double(s.h);
+        const ld_state exact1 = state_at(s.el, s.M0 + s.el.mean_motion() * s.h);
+        ld_state x = x0;
+        drift(x, gm, h);
+        const ld kappa = condition_number(x0, gm, h) + cancellation_of(x0, exact1).position;
+        const ld error = (x.r - exact1.r).norm() / exact1.r.norm();
+        largest_kappa = std::max(largest_kappa, double(kappa));
+        if (double(error / (eps * kappa)) > worst) {
+            worst = double(error / (eps * kappa));
+            worst_error = double(error);
+            worst_kappa = double(kappa);
+        }
+        // The two references agree (the elements and the f and g forms).
+        reference_worst = std::max(reference_worst, double((flow_position(exact0, s.el.gm, s.h) - exact1.r).norm() /
+                                                             exact1.r.norm() / kappa));
+    }
+    MESSAGE("max error / (eps (kappa + c_fg)) = " << worst << " (error " << worst_error << " at kappa + c_fg = "
+                                                 << worst_kappa << "); largest kappa + c_fg " << largest_kappa);
+    CHECK(worst <= 32);
+    CHECK(reference_worst <= 1e-15);  // long-double references: ~100 long-double eps times kappa
+}
+
+TEST_CASE("kepler_drift: 10^6 drifts keep energy and angular momentum to a few eps of their scale") {
+    // Energy relative to its scale |v|^2/2 + GM/r (E itself cancels near a
+    // parabola), angular momentum relative to |r||v|. r(h) and v(h) carry a
+    // few eps relative error times their cancellation factors (the comment at
+    // the top), so the bound is 16 eps (1 + max(c_r, c_v)).
+    // States are made cheaply in double (random direction, distance
+    // 10^[-1, 2], speed 0.05..1.9 times the circular one: elliptic, near-parabolic
+    // and hyperbolic), h up to 5 x 2 pi sqrt(r^3 / GM): the time is the drift's.
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> u(0, 1);
+    std::normal_distribution<double> normal(0, 1);
+    const int n = 1000000;
+    double worst_energy = 0, worst_momentum = 0, drift_seconds = 0;
+    for (int i = 0; i < n; ++i) {
+        const double gm = u(rng) < 0.5 ? 1.0 : 2.95912208286e-4;
+        const V3d dr = V3d(normal(rng), normal(rng), normal(rng)).normalized(), dv = V3d(normal(rng), normal(rng), normal(rng)).normalized();
+        const double r = std::pow(10.0, -1 + 3 * u(rng)), speed = std::sqrt(gm / r) * (0.05 + 1.85 * u(rng));
+        V3d q = r * dr, p = speed * dv;
+        const double h = 5 * 2 * 3.141592653589793 * std::sqrt(r * r * r / gm) * (2 * u(rng) - 1) * (u(rng) < 0.3 ? 0.002 : 1);
+        const ld_state x0{q.cast<ld>(), p.cast<ld>()};
+        const auto start = std::chrono::steady_clock::now();
+        kepler_drift(q, p, gm, h);
+        drift_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const ld_state x{q.cast<ld>(), p.cast<ld>()};
+        const cancellation c = cancellation_of(x0, x);
+        const ld factor = 1 + std::max(c.position, c.velocity);
+        const ld scale = std::max(x0.v.squaredNorm() / 2 + gm / x0.r.norm(), x.v.squaredNorm() / 2 + gm / x.r.norm());
+        worst_energy = std::max(worst_energy, double(std::fabs(energy(x, gm) - energy(x0, gm)) / (scale * factor * eps)));
+        const ld lscale = std::max(x0.r.norm() * x0.v.norm(), x.r.norm() * x.v.norm());
+        worst_momentum = std::max(worst_momentum, double((x.r.cross(x.v) - x0.r.cross(x0.v)).norm() / (lscale * factor * eps)));
+    }
+    MESSAGE("energy error <= " << worst_energy << " eps (1 + c) scale, angular momentum <= " << worst_momentum
+                               << " eps (1 + c) |r||v|; " << n << " drifts took " << drift_seconds << " s");
+    CHECK(worst_energy <= 16);
+    CHECK(worst_momentum <= 16);
+}
+
+TEST_CASE("kepler_drift: drift(h) then drift(-h) returns to the start to rounding") {
+    // The return error: the forward error (<= C eps kappa_f |r1|, kappa_f =
+    // kappa + c_fg of the forward drift) carried back by the backward flow
+    // (x kappa_b), plus the backward drift's own C eps kappa_b: C = 32.
+    std::mt19937_64 rng(11);
+    double worst = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const sample s = random_sample(rng);
+        const ld_state x0 = rounded(state_at(s.el, s.M0));
+        const double gm = double(s.el.gm), h = double(s.h);
+        ld_state x = x0;
+        drift(x, gm, h);
+        const ld kappa_f = condition_number(x0, gm, h) + cancellation_of(x0, x).position;
+        const ld kappa_b = condition_number(x, gm, -h) + cancellation_of(x, x0).position;
+        drift(x, gm, -h);
+        const ld error = (x.r - x0.r).norm() / x0.r.norm();
+        worst = std::max(worst, double(error / (eps * kappa_b * (1 + kappa_f))));
+    }
+    MESSAGE("return error <= " << worst << " eps kappa_b (1 + kappa_f)");
+    CHECK(worst <= 32);
+}
+
+namespace {
+// Bodies for the batched drift: random elements, and the hard lanes —
+// near-parabolic orbits either side of e = 1 and huge drifts.
+struct body_set {
+    std::vector<double> x, y, z, vx, vy, vz;
+    std::vector<ld_state> start;
+    void add(const ld_state& s) {
+        const ld_state r = rounded(s);
+        start.push_back(r);
+        x.push_back(double(r.r[0])), y.push_back(double(r.r[1])), z.push_back(double(r.r[2]));
+        vx.push_back(double(r.v[0])), vy.push_back(double(r.v[1])), vz.push_back(double(r.v[2]));
+    }
+    kepler_bodies<double> view() { return {x, y, z, vx, vy, vz}; }
+};
+}  // namespace
+
+TEST_CASE("kepler_drift_all: the batched drift equals the scalar drift to rounding, fallback lanes included") {
+    std::mt19937_64 rng(3);
+    std::uniform_real_distribution<double> u(0, 1);
+    const double gm = 1;
+    std::size_t total_fallbacks = 0;
+    for (const double h : {0.05, -3.0, 700.0, 1e7}) {
+        body_set b;
+        for (int i = 0; i < 2003; ++i) {  // not a multiple of the lane count: the tail too
+            sample s = random_sample(rng);
+            s.el.gm = gm;
+            if (i % 5 == 1) s.el.e = 1 + (u(rng) < 0.5 ? -1 : 1) * std::pow(10.0L, ld(-10 + 8 * u(rng)));  // near-parabolic
+            if (s.el.e > 1 && s.el.a > 0) s.el.a = -s.el.a;
+            if (s.el.e < 1 && s.el.a < 0) s.el.a = -s.el.a;
+            if (s.el.e > 1) s.M0 = std::min<ld>(s.M0, 5);
+            b.add(state_at(s.el, s.M0));
+        }
+        const std::size_t fallbacks = kepler_drift_all(b.view(), gm, h);
+        double worst = 0;
+        for (std::size_t i = 0; i < b.start.size(); ++i) {
+            ld_state x = b.start[i];
+            drift(x, gm, h);
+            const V3 rb(b.x[i], b.y[i], b.z[i]), vb(b.vx[i], b.vy[i], b.vz[i]);
+            const cancellation c = cancellation_of(b.start[i], x);
+            const ld kappa = condition_number(b.start[i], gm, h) + std::max(c.position, c.velocity);
+            worst = std::max(worst, double((rb - x.r).norm() / x.r.norm() / (eps * kappa)));
+            // Velocities: to rounding of their own size, times the same kappa.
+            worst = std::max(worst, double((vb - x.v).norm() / x.v.norm() / (eps * kappa)));
+        }
+        MESSAGE("h = " << h << ": " << fallbacks << " of " << b.start.size()
+                       << " bodies fell back to the scalar solve; max |batched - scalar| = " << worst << " eps (kappa + c)");
+        CHECK(worst <= 64);  // two drifts, each within 32 eps (kappa + c)
+        total_fallbacks += fallbacks;
+    }
+    CHECK(total_fallbacks > 0);  // the fallback lanes ran
+}
+
+TEST_CASE("kepler_drift: a solve Newton cannot finish alone still ends, and is accurate") {
+    // Danby's quartic iteration started 10^12 times too far out on a
+    // hyperbolic orbit with e ~ 1e4 and a drift of 1e9 dynamical times: the
+    // bracket and bisection must take over.
+    const ld_state x0 = rounded(state_at(elements{1, -1e-4L, 1e4L, 0.3L, 1.1L, 2.0L}, 0.5L));
+    const double gm = 1, h = 1e9 * 1e-6;  // n = 1e6
+    const double r0 = double(x0.r.norm()), v2 = double(x0.v.squaredNorm()), eta0 = double(x0.r.dot(x0.v));
+    const auto orbit = detail::make_orbit(r0, eta0, v2, gm, h);
+    for (const double guess : {1e12 * h / r0, -5.0, 1e-300, std::numeric_limits<double>::quiet_NaN()}) {
+        const auto k = detail::solve_universal(orbit, guess);
+        CHECK(std::fabs(k.f) <= k.noise + 4 * eps * std::fabs(h));
+    }
+    // The whole drift, and two more that the starter serves badly: a radial
+    // plunge nearly through the centre, and a near-parabola for 1e12 times its
+    // pericentre time.
+    struct hard {
+        ld_state x;
+        double gm, h;
+    };
+    const std::vector<hard> cases = {
+        {x0, gm, h},
+        {{V3(1, 0, 0), V3(-1.4142, 1e-9L, 0)}, 1.0, 1.2},
+        {rounded(state_at(elements{1, -1e8L, 1 + 1e-8L, 0.2L, 0.1L, 0.4L}, 0)), 1.0, 1e12},
+    };
+    for (const hard& c : cases) {
+        ld_state x = rounded(c.x);
+        const auto start = std::chrono::steady_clock::now();
+        drift(x, c.gm, c.h);
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        const V3 exact = flow_position(rounded(c.x), c.gm, c.h);
+        const ld kappa = condition_number(rounded(c.x), c.gm, c.h) + cancellation_of(rounded(c.x), {exact, x.v}).position;
+        const ld error = (x.r - exact).norm() / exact.norm();
+        MESSAGE("hard case: error " << double(error) << " = " << double(error / (eps * kappa)) << " eps (kappa + c_fg) ("
+                                    << double(kappa) << "), " << seconds << " s");
+        CHECK(error <= 32 * eps * kappa);
+        CHECK(seconds < 0.01);
+    }
+}
+
+TEST_CASE("kepler_drift: bad input names the value and the body") {
+    V3d r(1, 0, 0), v(0, 1, 0), zero = V3d::Zero();
+    CHECK_THROWS_WITH_AS(kepler_drift(zero, v, 1.0, 0.1), doctest::Contains("|r| = 0"), invalid_argument);
+    CHECK_THROWS_WITH_AS(kepler_drift(r, v, -1.0, 0.1), doctest::Contains("GM = -1"), invalid_argument);
+    CHECK_THROWS_WITH_AS(kepler_drift(r, v, 0.0, 0.1), doctest::Contains("GM = 0"), invalid_argument);
+    CHECK_THROWS_WITH_AS(kepler_drift(r, v, 1.0, std::numeric_limits<double>::infinity()), doctest::Contains("h = inf"),
+                         invalid_argument);
+    V3d bad_v(0, std::nan(""), 0);
+    CHECK_THROWS_WITH_AS(kepler_drift(r, bad_v, 1.0, 0.1), doctest::Contains("velocity y = nan"), invalid_argument);
+
+    body_set b;
+    for (int i = 0; i < 12; ++i) b.add({V3(1 + i, 0, 0), V3(0, 1, 0)});
+    b.x[9] = 0;  // body 9 at the central mass
+    CHECK_THROWS_WITH_AS(kepler_drift_all(b.view(), 1.0, 0.1), doctest::Contains("|r| of body 9 = 0"), invalid_argument);
+    b.x[9] = 10;
+    b.vz[3] = std::numeric_limits<double>::infinity();
+    CHECK_THROWS_WITH_AS(kepler_drift_all(b.view(), 1.0, 0.1), doctest::Contains("velocity z of body 3 = inf"),
+                         invalid_argument);
+    b.vz[3] = 0;
+    std::vector<double> gms(12, 1.0);
+    gms[5] = -2;
+    CHECK_THROWS_WITH_AS(kepler_drift_all(b.view(), std::span<const double>(gms), 0.1), doctest::Contains("GM = -2"),
+                         invalid_argument);
+    gms.pop_back();
+    CHECK_THROWS_WITH_AS(kepler_drift_all(b.view(), std::span<const double>(gms), 0.1),
+                         doctest::Contains("11 values of GM for 12 bodies"), invalid_argument);
+    b.y.pop_back();
+    CHECK_THROWS_WITH_AS(kepler_drift_all(b.view(), 1.0, 0.1), doctest::Contains("11 values in y"), invalid_argument);
+}
+
+// ---- Planetary coordinates ----------------------------------------------------
+
+namespace {
+struct planetary_system {
+    std::vector<double> mass;
+    phase_space<double> x;
+};
+
+// A star of mass 1 and N - 1 planets of mass 10^[-9, 0] at 1..30 AU-like
+// distances, moving at ~orbital speeds, in an inertial frame offset from the
+// barycentre and moving.
+planetary_system random_system(std::mt19937_64& rng, int bodies) {
+    std::uniform_real_distribution<double> u(-1, 1);
+    planetary_system s{std::vector<double>(std::size_t(bodies)), phase_space<double>(3 * bodies)};
+    s.mass[0] = 1;
+    for (int i = 1; i < bodies; ++i) s.mass[std::size_t(i)] = std::pow(10.0, -9 + 9 * (u(rng) + 1) / 2);
+    for (int i = 0; i < bodies; ++i)
+        for (int k = 0; k < 3; ++k) {
+            s.x.q[3 * i + k] = 5 + (i == 0 ? 0.01 : 15) * u(rng);
+            s.x.p[3 * i + k] = s.mass[std::size_t(i)] * (0.3 + (i == 0 ? 0.001 : 1) * u(rng));
+        }
+    return s;
+}
+
+// The largest error per body, in units of eps times the body's scale:
+// N |q|_max for positions, N m_i |v|_max for momenta.
+double roundtrip_error(const planetary_system& s, const phase_space<double>& back) {
+    const Eigen::Index n = Eigen::Index(s.mass.size());
+    double qmax = s.x.q.cwiseAbs().maxCoeff(), vmax = 0;
+    for (Eigen::Index i = 0; i < n; ++i) vmax = std::max(vmax, s.x.p.segment<3>(3 * i).norm() / s.mass[std::size_t(i)]);
+    double worst = 0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+        worst = std::max(worst, (back.q.segment<3>(3 * i) - s.x.q.segment<3>(3 * i)).norm() / (double(n) * qmax * eps));
+        worst = std::max(worst, (back.p.segment<3>(3 * i) - s.x.p.segment<3>(3 * i)).norm() /
+                                    (double(n) * s.mass[std::size_t(i)] * vmax * eps));
+    }
+    return worst;
+}
+}  // namespace
+
+TEST_CASE("planetary coordinates: democratic heliocentric and Jacobi round trip to rounding, N = 2..10") {
+    // Each coordinate is a sum of at most N terms of size <= the scale, each
+    // rounded once or twice, both ways: the bound 8 eps N scale.
+    std::mt19937_64 rng(5);
+    double worst_dh = 0, worst_jacobi = 0;
+    for (int bodies = 2; bodies <= 10; ++bodies)
+        for (int trial = 0; trial < 200; ++trial) {
+            const planetary_system s = random_system(rng, bodies);
+            worst_dh = std::max(worst_dh, roundtrip_error(s, from_democratic_heliocentric(
+                                                                 to_democratic_heliocentric(s.x, s.mass), s.mass)));
+            worst_jacobi = std::max(worst_jacobi, roundtrip_error(s, from_jacobi(to_jacobi(s.x, s.mass), s.mass)));
+        }
+    MESSAGE("round trip <= " << worst_dh << " (democratic heliocentric), " << worst_jacobi
+                             << " (Jacobi) eps N scale");
+    CHECK(worst_dh <= 8);
+    CHECK(worst_jacobi <= 8);
+}
+
+TEST_CASE("planetary coordinates: centre of mass, total momentum and kinetic energy as the splittings need them") {
+    std::mt19937_64 rng(9);
+    double worst = 0;
+    for (int bodies = 2; bodies <= 10; ++bodies)
+        for (int trial = 0; trial < 100; ++trial) {
+            const planetary_system s = random_system(rng, bodies);
+            const std::size_t n = s.mass.size();
+            // Long-double references of the centre of mass, total momentum, kinetic energy.
+            ld M = 0, T = 0;
+            V3 com = V3::Zero(), P = V3::Zero();
+            for (std::size_t i = 0; i < n; ++i) {
+                const Eigen::Index k = Eigen::Index(3 * i);
+                M += s.mass[i];
+                com += ld(s.mass[i]) * s.x.q.segment<3>(k).cast<ld>();
+                P += s.x.p.segment<3>(k).cast<ld>();
+                T += s.x.p.segment<3>(k).cast<ld>().squaredNorm() / (2 * ld(s.mass[i]));
+            }
+            com /= M;
+            const double qscale = s.x.q.cwiseAbs().maxCoeff();
+            const ld pscale = [&] {
+                ld m = 0;
+                for (std::size_t i = 0; i < n; ++i) m += s.x.p.segment<3>(Eigen::Index(3 * i)).cast<ld>().norm();
+                return m;
+            }();
+            const auto q0 = [](const phase_space<double>& y) { return V3(y.q.segment<3>(0).cast<ld>()); };
+            const auto p0 = [](const phase_space<double>& y) { return V3(y.p.segment<3>(0).cast<ld>()); };
+
+            // Democratic heliocentric (Duncan, Levison & Lee 1998, eq. 2-4).
+            const phase_space<double> dh = to_democratic_heliocentric(s.x, s.mass);
+            V3 planets = V3::Zero();
+            ld T_dh = p0(dh).squaredNorm() / (2 * M);
+            for (std::size_t i = 1; i < n; ++i) {
+                const V3 Pi = dh.p.segment<3>(Eigen::Index(3 * i)).cast<ld>();
+                planets += Pi;
+                T_dh += Pi.squaredNorm() / (2 * ld(s.mass[i]));
+                // Heliocentric positions.
+                const V3 rel = (s.x.q.segment<3>(Eigen::Index(3 * i)) - s.x.q.segment<3>(0)).cast<ld>();
+                worst = std::max(worst, double((dh.q.segment<3>(Eigen::Index(3 * i)).cast<ld>() - rel).norm() / (qscale * eps)));
+            }
+            T_dh += planets.squaredNorm() / (2 * ld(s.mass[0]));
+            // The planets' barycentric momenta sum to minus the star's.
+            const V3 star_bary = s.x.p.segment<3>(0).cast<ld>() - ld(s.mass[0]) / M * P;
+            worst = std::max(worst, double((planets + star_bary).norm() / (double(n) * pscale * eps)));
+            worst = std::max(worst, double((q0(dh) - com).norm() / (double(n) * qscale * eps)));
+            worst = std::max(worst, double((p0(dh) - P).norm() / (double(n) * pscale * eps)));
+            worst = std::max(worst, double(std::fabs(T_dh - T) / (double(n) * T * eps)));
+
+            // Jacobi (Wisdom & Holman 1991, sec. 3): the kinetic energy keeps its form in the Jacobi masses.
+            const phase_space<double> jac = to_jacobi(s.x, s.mass);
+            const std::vector<double> mj = jacobi_masses(s.mass);
+            ld T_j = 0;
+            for (std::size_t i = 0; i < n; ++i)
+                T_j += jac.p.segment<3>(Eigen::Index(3 * i)).cast<ld>().squaredNorm() / (2 * ld(mj[i]));
+            worst = std::max(worst, double(std::fabs(T_j - T) / (double(n) * T * eps)));
+            worst = std::max(worst, double((q0(jac) - com).norm() / (double(n) * qscale * eps)));
+            worst = std::max(worst, double((p0(jac) - P).norm() / (double(n) * pscale * eps)));
+            // The innermost Jacobi position is heliocentric.
+            worst = std::max(worst, double((jac.q.segment<3>(3) - (s.x.q.segment<3>(3) - s.x.q.segment<3>(0))).cast<ld>().norm() /
+                                           (qscale * eps)));
+        }
+    MESSAGE("centre of mass, momentum and kinetic energy relations hold to " << worst << " eps N scale");
+    CHECK(worst <= 8);
+}
+
+TEST_CASE("planetary coordinates: a non-positive mass is refused, naming the body and the value") {
+    std::mt19937_64 rng(1);
+    planetary_system s = random_system(rng, 4);
+    s.mass[2] = -1e-3;
+    CHECK_THROWS_WITH_AS(to_jacobi(s.x, s.mass), doctest::Contains("mass of body 2 = -0.001"), invalid_argument);
+    CHECK_THROWS_WITH_AS(from_democratic_heliocentric(s.x, s.mass), doctest::Contains("mass of body 2 = -0.001"),
+                         invalid_argument);
+    s.mass[2] = 0;
+    CHECK_THROWS_WITH_AS(to_democratic_heliocentric(s.x, s.mass), doctest::Contains("mass of body 2 = 0"),
+                         invalid_argument);
+    CHECK_THROWS_WITH_AS(jacobi_masses(s.mass), doctest::Contains("mass of body 2 = 0"), invalid_argument);
+    s.mass[2] = 1e-3;
+    s.mass.push_back(1);
+    CHECK_THROWS_WITH_AS(from_jacobi(s.x, s.mass), doctest::Contains("12 degrees of freedom for 5 bodies"),
+                         invalid_argument);
+}
