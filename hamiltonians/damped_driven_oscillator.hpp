@@ -1,9 +1,10 @@
 #pragma once
 // Damped, driven oscillator m x'' = -k x - b v + F0 cos(Omega t), componentwise
-// in any dimension: not Hamiltonian, so it runs with the classic steppers
-// (classic_steppers.hpp) only. Newton's form (q = x, p = v), with the force
-// split as F(x, t) = -k x + F0 cos(Omega t) and drag G(v) = b v for the damped
-// leapfrog (Sandvik's lecture notes). The exact solution covers every regime: under-, over-
+// in any dimension. Newton's form (q = x, p = v), with the force split as
+// F(x, t) = -k x + F0 cos(Omega t) and drag G(v) = b v for the classic
+// steppers and the damped leapfrog (Sandvik's lecture notes), and as the
+// conformal system dv/dt = F(x, t)/m - (b/m) v for the splitting tables
+// (methods/conformal_splitting.hpp). The exact solution covers every regime: under-, over-
 // and critically damped, undamped, and undamped at resonance.
 #include <cmath>
 
@@ -34,6 +35,15 @@ struct damped_driven_oscillator {
         out.array() += T(drive_amplitude) * cos(T(drive_frequency) * t);
     }
     template <class V> void drag(const V& v, V& out) const { out = v * typename V::Scalar(damping); }
+
+    // The conformal form (conformal_splitting.hpp): p = v, so the force on p
+    // is F(x, t)/m and the damping rate of dv/dt = ... - gamma v is b/m.
+    double damping_rate() const { return damping / mass; }
+    template <class V, class T> void driven_force(const V& x, T t, V& out) const {
+        force(x, t, out);
+        out /= T(mass);
+    }
+    template <class V> void velocity(const V& v, V& out) const { out = v; }
 
     // Mechanical energy m v^2/2 + k x^2/2 (not conserved unless b = F0 = 0).
     template <class S, int D> S energy(const phase_space<S, D>& x) const {

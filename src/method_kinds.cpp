@@ -38,6 +38,11 @@ std::string why_not(needs n, const system_form& form) {
         case needs::newtonian:
             return form.newtonian ? ""
                                   : "needs Newton's form x'' = a(x, v, t); this system is Hamiltonian (use velocity_verlet)";
+        case needs::splitting:
+            return form.separable_hamiltonian || form.conformal
+                       ? ""
+                       : "needs a separable Hamiltonian H = T(p) + V(q) or a damped, driven one (dp/dt = F(q, t) - "
+                         "gamma p); this system is neither (use a classic method)";
         case needs::damped_split:
             return form.damped_split ? "" : "needs a force split as F(x, t) - G(v); only damped_oscillator has one";
         case needs::differentiable_force:
@@ -148,6 +153,8 @@ std::string why_not_resumable(const method_spec& m) {
 
 needs requirement_of(const method_spec& m) {
     if (m.kind == method_kind::table && m.coefficients->has_force_gradient()) return needs::differentiable_force;
+    // Extrapolation and compensated sums wrap the separable stepper only.
+    if (m.kind == method_kind::table && (m.extrapolation_columns > 0 || m.compensated)) return needs::separable_hamiltonian;
     if (m.kind == method_kind::classic) return classic_at(m.classic).requirement;
     return entry_of(m.kind).requirement;  // logh: also a separable Hamiltonian
 }

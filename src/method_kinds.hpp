@@ -27,9 +27,18 @@ struct system_form {
     bool damped_split = false;           // a force split as F(x, t) - G(v)
     bool negative_potential = false;     // V(q) < 0 everywhere (gravitation): what LogH needs
     bool differentiable_force = false;   // J_F(q) u, analytic or by dual numbers: what force-gradient kicks need
+    bool conformal = false;              // dp/dt = F(q, t) - gamma p with dq/dt linear in p: damped tables
 };
 
-enum class needs { any, separable_hamiltonian, newtonian, damped_split, negative_potential, differentiable_force };
+enum class needs {
+    any,
+    separable_hamiltonian,
+    newtonian,
+    damped_split,
+    negative_potential,
+    differentiable_force,
+    splitting,  // a kick-drift table: a separable Hamiltonian, or a damped, driven one (conformal_splitting.hpp)
+};
 
 // Why a method that needs `n` cannot run on a system of `form` ("" when it can).
 std::string why_not(needs n, const system_form& form);
@@ -48,11 +57,12 @@ struct method_kind_entry {
 
 // The registry, in the order of method_kind.
 inline constexpr std::array<method_kind_entry, 8> method_kind_entries{{
-    {.kind = method_kind::table, .label = "table", .requirement = needs::separable_hamiltonian,
-     .description = "a splitting table: the catalog's (sympl tables) or a scene's own [[table]]; extrapolated(<symmetric "
+    {.kind = method_kind::table, .label = "table", .requirement = needs::splitting,
+     .description = "a splitting table: the catalog's (sympl tables) or a scene's own [[table]], on a separable "
+                    "Hamiltonian or, with exact damped drifts, on a damped, driven system; extrapolated(<symmetric "
                     "table>, k) extrapolates it over k runs of 1..k steps (order p + 2(k - 1)); compensated(<table>) sums "
-                    "the updates with Kahan's compensation; a force-gradient table (chin_4a, ...) also needs the force's "
-                    "derivative"},
+                    "the updates with Kahan's compensation (both on separable Hamiltonians); a force-gradient table "
+                    "(chin_4a, ...) also needs the force's derivative"},
     {.kind = method_kind::processed, .label = "processed", .requirement = needs::separable_hamiltonian,
      .not_resumable = "its kernel runs on a processed state that the true state does not hold",
      .description = "a processed method (blanes_2001_p6, ...): a kernel every step, its processor only where the state is "

@@ -48,6 +48,8 @@ constexpr bool meets() {
         if constexpr (separable_hamiltonian<Sys, State::vector>) return differentiable_force<Sys, State::vector>;
         else return false;
     } else if constexpr (N == needs::newtonian) return newtonian_form<E>;
+    else if constexpr (N == needs::splitting)
+        return separable_hamiltonian<Sys, State::vector> || conformal_system<Sys, State::vector>;
     else return damped_newtonian_form<E, State>;
 }
 
@@ -56,7 +58,8 @@ system_form form_of() {
     return {.separable_hamiltonian = meets<needs::separable_hamiltonian, Sys>(),
             .newtonian = meets<needs::newtonian, Sys>(),
             .damped_split = meets<needs::damped_split, Sys>(),
-            .differentiable_force = meets<needs::differentiable_force, Sys>()};
+            .differentiable_force = meets<needs::differentiable_force, Sys>(),
+            .conformal = conformal_system<Sys, phase_space<double>::vector>};
 }
 
 template <class Sys>

@@ -14,14 +14,22 @@
 
 namespace sympl::app::detail {
 
+// A separable Hamiltonian's table, or a damped, driven system's (its drifts
+// damped exactly, conformal_splitting.hpp); extrapolated and compensated
+// tables need the separable stepper (requirement_of refuses them before).
 template <>
 struct run_kind<method_kind::table> {
     template <class C>
     static steps_and_forces run(const C& c) {
-        splitting_stepper<typename C::system, typename C::State> stepper(c.sys, *c.m.coefficients, {c.m.compensated});
-        if (c.m.extrapolation_columns > 0)
-            return c.template drive<false>(extrapolation_stepper(std::move(stepper), c.m.extrapolation_columns));
-        return c.drive(std::move(stepper));
+        using Sys = typename C::system;
+        if constexpr (separable_hamiltonian<Sys, typename C::State::vector>) {
+            splitting_stepper<Sys, typename C::State> stepper(c.sys, *c.m.coefficients, {c.m.compensated});
+            if (c.m.extrapolation_columns > 0)
+                return c.template drive<false>(extrapolation_stepper(std::move(stepper), c.m.extrapolation_columns));
+            return c.drive(std::move(stepper));
+        } else {
+            return c.drive(conformal_stepper<Sys, typename C::State>(c.sys, *c.m.coefficients));
+        }
     }
 };
 
@@ -97,7 +105,8 @@ template <class Sys>
 bool meets_at_run_time(needs n) {
     constexpr std::array answers{meets<needs::any, Sys>(),          meets<needs::separable_hamiltonian, Sys>(),
                                  meets<needs::newtonian, Sys>(),    meets<needs::damped_split, Sys>(),
-                                 meets<needs::negative_potential, Sys>(), meets<needs::differentiable_force, Sys>()};
+                                 meets<needs::negative_potential, Sys>(), meets<needs::differentiable_force, Sys>(),
+                                 meets<needs::splitting, Sys>()};
     return answers[std::size_t(n)];
 }
 

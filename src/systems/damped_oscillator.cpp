@@ -9,8 +9,8 @@ namespace sympl::app {
 system_entry damped_oscillator_entry() {
     return {
         .name = "damped_oscillator",
-        .description = "m x'' = -k x - b v + F0 cos(Omega t): not Hamiltonian (classic methods and Odeint only); "
-                       "x0 = 1, v0 = 0; exact",
+        .description = "m x'' = -k x - b v + F0 cos(Omega t): not Hamiltonian; classic methods, Odeint, and the "
+                       "splitting tables with exact damped drifts (gamma = b/m); x0 = 1, v0 = 0; exact",
         .parameters = {positive("mass", 1, "m"), positive("stiffness", 1, "k"), nonnegative("damping", 0.3, "b"),
                        any("drive_amplitude", 0, "F0"), nonnegative("drive_frequency", 0, "Omega")},
         .exact = true,

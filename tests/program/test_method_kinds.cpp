@@ -59,8 +59,13 @@ TEST_CASE("method kinds: what each needs, and the reason when a system lacks it"
     const auto m = [](const char* name) { return *resolve_method(name, {}); };
     CHECK(why_not(m("leapfrog_kdk"), hamiltonian).empty());
     CHECK(why_not(m("leapfrog_kdk"), damped) ==
-          "method 'leapfrog_kdk' needs a separable Hamiltonian H = T(p) + V(q); this system is not Hamiltonian (use a "
-          "classic method)");
+          "method 'leapfrog_kdk' needs a separable Hamiltonian H = T(p) + V(q) or a damped, driven one (dp/dt = F(q, t) "
+          "- gamma p); this system is neither (use a classic method)");
+    system_form conformal = damped;
+    conformal.conformal = true;  // the damped oscillator: its tables run with damped drifts
+    CHECK(why_not(m("leapfrog_kdk"), conformal).empty());
+    CHECK(why_not(*resolve_method("compensated(leapfrog_kdk)", {}), conformal).find("needs a separable Hamiltonian H = T(p) + V(q); this") != std::string::npos);
+    CHECK(why_not(*resolve_method("blanes_2001_p6", {}), conformal).find("needs a separable Hamiltonian") != std::string::npos);
     CHECK(why_not(m("leapfrog_two_step"), hamiltonian).find("needs Newton's form") != std::string::npos);
     CHECK(why_not(m("leapfrog_two_step"), damped).empty());
     CHECK(why_not(m("damped_leapfrog"), hamiltonian).find("F(x, t) - G(v)") != std::string::npos);

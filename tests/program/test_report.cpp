@@ -82,11 +82,11 @@ TEST_CASE("report: a method the system cannot run stops everything before anythi
     const fs::path dir = scratch_directory("sympl_test_unsupported");
     fs::remove_all(dir);
     const scene ok = parse_scene("system = \"pendulum\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.1\nt_end = 1\n", "ok.toml");
-    const scene bad = parse_scene("system = \"damped_oscillator\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.1\nt_end = 1\n",
+    const scene bad = parse_scene("system = \"damped_oscillator\"\nmethods = [\"blanes_2001_p6\"]\ndt = 0.1\nt_end = 1\n",
                                   "bad.toml");
     std::ostringstream out;
     CHECK_THROWS_WITH_AS(run_report({ok, bad}, {dir.string(), true, false, false}, out),
-                         "bad.toml: method 'leapfrog_kdk' needs a separable Hamiltonian H = T(p) + V(q); this system "
+                         "bad.toml: method 'blanes_2001_p6' needs a separable Hamiltonian H = T(p) + V(q); this system "
                          "is not Hamiltonian (use a classic method)",
                          scene_error);
     CHECK_FALSE(fs::exists(dir / "work_precision.csv"));
