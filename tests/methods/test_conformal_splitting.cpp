@@ -224,3 +224,47 @@ TEST_CASE("conformal_splitting: bad input is named") {
     auto fine = make_conformal_stepper<State>(damped_driven_by(h, 0.1), method("leapfrog_kdk"));
     CHECK_THROWS_WITH_AS(fine.step(y, 0.0, NAN), doctest::Contains("dt = nan"), invalid_argument);
 }
+
+TEST_CASE("conformal_splitting: a harmonic drive by angle addition equals the cosine per kick, to rounding") {
+    // The same pendulum driven by harmonic_drive (one cosine and sine per step) and by a lambda (one cosine per
+    // kick): the kicks see the same forces up to rounding, so the runs agree to a few ulps per step.
+    const harmonic_drive drive{drive_amplitude, drive_frequency, 0.4};
+    const auto by_angles = damped_driven_by(hamiltonians::pendulum{}, gamma_, drive);
+    const auto by_cosines = damped_driven_by(hamiltonians::pendulum{}, gamma_, [&](double t) { return drive(t); });
+    static_assert(harmonically_driven<decltype(by_angles), State::vector>);
+    static_assert(!harmonically_driven<decltype(by_cosines), State::vector>);
+    const std::size_t n = 1000;
+    for (const char* name : {"leapfrog_kdk", "blanes_moan_srkn11b", "forest_ruth_4"}) {
+        CAPTURE(name);
+        auto a = make_conformal_stepper<State>(by_angles, method(name));
+        auto b = make_conformal_stepper<State>(by_cosines, method(name));
+        State x(V1(1.2), V1(0.3)), y = x;
+        integrate_until(a, x, 0.0, 0.1 * double(n), 0.1);
+        integrate_until(b, y, 0.0, 0.1 * double(n), 0.1);
+        const double difference = std::hypot(x.q[0] - y.q[0], x.p[0] - y.p[0]);
+        CAPTURE(difference);
+        CHECK(difference <= double(n) * double(method(name).substeps().size()) * std::numeric_limits<double>::epsilon());
+    }
+}
+
+TEST_CASE("conformal_splitting: a table that ends and starts with a kick reuses the force across steps") {
+    // leapfrog_kdk: one force per step and one to start, when each step starts where the last one ended (t = i dt
+    // exactly: dt = 1/4); a state handed in from elsewhere gets a fresh force.
+    const hamiltonians::damped_driven_oscillator o{1.0, 1.0, 0.3, 0.5, 0.7};
+    auto s = make_conformal_stepper<State>(o, method("leapfrog_kdk"));
+    State x(V1(1.0), V1(0.0));
+    integrate_until(s, x, 0.0, 100.0, 0.25);
+    CHECK(s.force_evaluations() == 401);
+    State moved = x;
+    moved.q[0] += 1e-3;
+    s.step(moved, 100.0, 0.25);
+    CHECK(s.force_evaluations() == 403);
+    // Reuse changes no bit: the same run one step at a time from fresh steppers (no carried force).
+    State y(V1(1.0), V1(0.0));
+    for (int i = 0; i < 400; ++i) {
+        auto fresh = make_conformal_stepper<State>(o, method("leapfrog_kdk"));
+        fresh.step(y, 0.25 * i, 0.25);
+    }
+    CHECK(y.q[0] == x.q[0]);
+    CHECK(y.p[0] == x.p[0]);
+}

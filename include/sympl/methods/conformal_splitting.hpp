@@ -21,6 +21,8 @@
 #include <cmath>
 #include <concepts>
 #include <cstdint>
+#include <limits>
+#include <tuple>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -45,6 +47,28 @@ concept conformal_system = requires(const S& s, const Vec& q, const Vec& p, scal
 
 // No driving force.
 struct no_drive {};
+
+// The driving force F0 cos(Omega t + phase) on every component. Its values at
+// the kicks of a step follow from one cosine and one sine at the step's start
+// by the angle-addition formulas, the sub-steps' angles worked out once per
+// step size: a step pays two transcendental calls, not one per kick.
+struct harmonic_drive {
+    double amplitude = 0;  // F0
+    double frequency = 0;  // Omega
+    double phase = 0;
+    template <class T> T operator()(T t) const {
+        using std::cos;
+        return T(amplitude) * cos(T(frequency) * t + T(phase));
+    }
+};
+
+// A conformal system whose drive is harmonic: it gives the drive and the
+// force without it, -dV/dq, and the stepper adds the drive itself.
+template <class S, class Vec>
+concept harmonically_driven = conformal_system<S, Vec> && requires(const S& s, const Vec& q, Vec& out) {
+    { s.harmonic_drive_term() } -> std::convertible_to<harmonic_drive>;
+    s.undriven_force(q, out);
+};
 
 // A separable Hamiltonian with damping gamma and a driving force f(t): a
 // callable drive(t) returning one number (the same force on every component)
@@ -82,6 +106,19 @@ struct damped_driven {
     template <class Vec>
     void velocity(const Vec& p, Vec& v) const {
         sympl::velocity(hamiltonian, p, v);
+    }
+
+    // A harmonic drive is added by the stepper (harmonically_driven).
+    harmonic_drive harmonic_drive_term() const
+        requires std::is_same_v<Drive, harmonic_drive>
+    {
+        return drive;
+    }
+    template <class Vec>
+    void undriven_force(const Vec& q, Vec& f) const
+        requires std::is_same_v<Drive, harmonic_drive>
+    {
+        force(hamiltonian, q, f);
     }
 
     // T(p) + V(q): not conserved unless gamma = 0 and there is no drive.
@@ -126,26 +163,31 @@ public:
                                    "plain kick-drift table");
         gamma_ = scalar(gamma);
         ops_ = table_.substeps();
+        if constexpr (harmonic) {
+            drive_ = system_.harmonic_drive_term();
+            if (!isfinite(drive_.amplitude) || !isfinite(drive_.frequency) || !isfinite(drive_.phase))
+                throw invalid_argument("conformal_stepper: harmonic drive F0 = " + detail::number_text(drive_.amplitude) +
+                                       ", Omega = " + detail::number_text(drive_.frequency) + ", phase = " +
+                                       detail::number_text(drive_.phase) + "; expected finite values");
+        }
     }
 
     // One step from time t: a time-aware stepper (integrate.hpp's drivers pass t).
     void step(State& x, scalar t, scalar dt) {
         check(x, dt);
         if (!(dt == sized_for_)) size_substeps(dt);
-        scalar time = t;
-        for (std::size_t k = 0; k < ops_.size(); ++k) {
-            const scalar h = size_[k];
-            if (ops_[k].kind == substep::kick) {
-                system_.driven_force(x.q, time, force_);
-                ++force_evaluations_;
-                x.p += h * force_;
-            } else {
-                system_.velocity(x.p, velocity_);
-                ++velocity_evaluations_;
-                x.q += span_[k] * velocity_;
-                x.p *= decay_[k];
-                time += h;
-            }
+        // A table that ends and starts with a kick evaluates the force at the
+        // end of a step where the next step starts: reused when the next step
+        // starts from the state and time this one left (bit for bit).
+        const bool reuse = last_kick_q_.size() == x.q.size() && t == last_kick_t_ && x.q == last_kick_q_;
+        if constexpr (State::dimension != Eigen::Dynamic) {
+            // Small fixed-size states run in locals the compiler keeps in registers.
+            vector q = x.q, p = x.p, f, v;
+            walk(q, p, f, v, t, reuse);
+            x.q = q;
+            x.p = p;
+        } else {
+            walk(x.q, x.p, force_, velocity_, t, reuse);
         }
     }
 
@@ -156,6 +198,59 @@ public:
     const table& method() const { return table_; }
 
 private:
+    // The step's sub-steps in order: a kick p += h (F(q) + f(t + tau_k)), a
+    // damped drift q += span v(p), p *= decay.
+    void walk(vector& q, vector& p, vector& f, vector& v, scalar t, bool reuse) {
+        scalar drive_cos{}, drive_sin{};
+        if constexpr (harmonic) std::tie(drive_cos, drive_sin) = harmonic_drive_at(t);
+        const std::size_t last = ops_.size() - 1;
+        for (std::size_t k = 0; k <= last; ++k) {
+            const scalar h = size_[k];
+            if (ops_[k].kind == substep::drift) {
+                system_.velocity(p, v);
+                ++velocity_evaluations_;
+                q += span_[k] * v;
+                p *= decay_[k];
+                continue;
+            }
+            if (k == 0 && reuse) {
+                p += h * last_kick_force_;
+                continue;
+            }
+            if constexpr (harmonic) {
+                // F0 cos(Omega (t + tau_k) + phase), tau_k the kick's time into the step; at the
+                // step's end evaluated afresh (and kept for the next step's start), so that a
+                // step's first kick has the same bits whether it was carried over or not.
+                system_.undriven_force(q, f);
+                if (k == last)
+                    f.array() += harmonic_drive_at(t + offset_[k]).first;
+                else
+                    f.array() += drive_cos * kick_cos_[k] - drive_sin * kick_sin_[k];
+            } else {
+                system_.driven_force(q, t + offset_[k], f);
+            }
+            ++force_evaluations_;
+            p += h * f;
+            if (k == last && ops_.front().kind == substep::kick) {
+                last_kick_q_ = q;
+                last_kick_force_ = f;
+                last_kick_t_ = t + offset_[k];
+            }
+        }
+    }
+
+    // F0 cos(Omega t + phase) and F0 sin(Omega t + phase), the last pair kept.
+    std::pair<scalar, scalar> harmonic_drive_at(scalar t) {
+        using std::cos;
+        using std::sin;
+        if (!(t == drive_time_)) {
+            const scalar angle = scalar(drive_.frequency) * t + scalar(drive_.phase);
+            drive_at_ = {scalar(drive_.amplitude) * cos(angle), scalar(drive_.amplitude) * sin(angle)};
+            drive_time_ = t;
+        }
+        return drive_at_;
+    }
+
     // Per sub-step its size h and, for drifts, e^{-gamma h} and
     // (1 - e^{-gamma h}) / gamma (= h when gamma = 0, and without the
     // cancellation of 1 - e^{-x} at small x): worked out once per step size,
@@ -163,14 +258,22 @@ private:
     void size_substeps(scalar dt) {
         using std::exp;
         using std::expm1;
-        size_.resize(ops_.size());
-        decay_.resize(ops_.size());
-        span_.resize(ops_.size());
+        using std::cos;
+        using std::sin;
+        for (std::vector<scalar>* v : {&size_, &decay_, &span_, &offset_, &kick_cos_, &kick_sin_}) v->resize(ops_.size());
+        scalar into_step(0);  // the sub-step's time from the step's start
         for (std::size_t k = 0; k < ops_.size(); ++k) {
             const scalar h = scalar(ops_[k].weight) * dt;
             size_[k] = h;
             decay_[k] = gamma_ == scalar(0) ? scalar(1) : scalar(exp(-gamma_ * h));
             span_[k] = gamma_ == scalar(0) ? h : scalar(-expm1(-gamma_ * h) / gamma_);
+            // The drifts' weights sum to 1: a final kick is at the step's end, t + dt.
+            offset_[k] = k + 1 == ops_.size() ? dt : into_step;
+            if constexpr (harmonic) {
+                kick_cos_[k] = cos(scalar(drive_.frequency) * offset_[k]);
+                kick_sin_[k] = sin(scalar(drive_.frequency) * offset_[k]);
+            }
+            if (ops_[k].kind == substep::drift) into_step += h;
         }
         sized_for_ = dt;
     }
@@ -219,14 +322,21 @@ private:
         }
     }
 
+    static constexpr bool harmonic = harmonically_driven<System, vector>;
+
     System system_;
+    harmonic_drive drive_{};
     table table_;
     std::vector<substep> ops_;
     scalar gamma_{};
     vector force_, velocity_;
     Eigen::Index checked_dimension_ = -1;
     scalar sized_for_ = scalar(0);  // the step size size_, decay_ and span_ hold (0: none yet)
-    std::vector<scalar> size_, decay_, span_;
+    std::vector<scalar> size_, decay_, span_, offset_, kick_cos_, kick_sin_;
+    vector last_kick_q_, last_kick_force_;  // q and force of the last step's final kick (empty: none)
+    scalar last_kick_t_{};
+    scalar drive_time_ = scalar(std::numeric_limits<double>::quiet_NaN());  // the time drive_at_ holds
+    std::pair<scalar, scalar> drive_at_{};
     std::uint64_t force_evaluations_ = 0, velocity_evaluations_ = 0;
 };
 
