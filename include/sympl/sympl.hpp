@@ -28,6 +28,7 @@
 #include "methods/richardson.hpp"
 #include "methods/rkn_pairs.hpp"
 #include "methods/time_transformation.hpp"
+#include "methods/wisdom_holman.hpp"
 #include "analysis/chaos_indicator.hpp"
 #include "analysis/convergence.hpp"
 #include "analysis/order_conditions.hpp"

@@ -1,0 +1,346 @@
+// The Wisdom-Holman stepper in democratic heliocentric coordinates
+// (Wisdom & Holman 1991, Astron. J. 102, 1528; Duncan, Levison & Lee 1998,
+// Astron. J. 116, 2067) on the outer solar system of Hairer, Lubich & Wanner
+// and on a star with two planets of masses eps and 0.6 eps:
+//   (a) planet masses -> 0: every planet follows its exact Kepler orbit, to rounding;
+//   (b) the relative energy error stays bounded over 2 10^4 steps and scales as
+//       eps h^2 for the leapfrog and as eps h^4 (+ eps^2 h^2) for SABA_2
+//       (Laskar & Robutel 2001, Celest. Mech. Dyn. Astron. 80, 39);
+//   (c) on the outer solar system it is far below the T + V leapfrog's at the same step;
+//   (d) bad input names the body.
+// Also: steps(n) against n calls of step(), the counters, and the drivers.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include <sympl/core/integrate.hpp>
+#include <sympl/core/splitting_stepper.hpp>
+#include <sympl/hamiltonians/outer_solar_system.hpp>
+#include <sympl/methods/catalog.hpp>
+#include <sympl/methods/kepler_drift.hpp>
+#include <sympl/methods/wisdom_holman.hpp>
+
+using namespace sympl;
+
+namespace {
+constexpr double eps = std::numeric_limits<double>::epsilon();
+constexpr double two_pi = 6.283185307179586;
+using State = phase_space<double>;
+using V3 = Eigen::Vector3d;
+
+// H = sum |p_i|^2 / 2m_i - sum_{i<j} G m_i m_j / |q_i - q_j| in long double.
+long double nbody_energy(const std::vector<double>& m, double G, const State& x) {
+    long double t = 0, v = 0;
+    const std::size_t n = m.size();
+    for (std::size_t i = 0; i < n; ++i) {
+        const Eigen::Matrix<long double, 3, 1> p = x.p.segment<3>(Eigen::Index(3 * i)).cast<long double>();
+        t += p.squaredNorm() / (2 * (long double)m[i]);
+        for (std::size_t j = i + 1; j < n; ++j) {
+            const Eigen::Matrix<long double, 3, 1> d =
+                (x.q.segment<3>(Eigen::Index(3 * i)) .cast<long double>() - x.q.segment<3>(Eigen::Index(3 * j)).cast<long double>());
+            v -= (long double)G * m[i] * m[j] / std::sqrt(d.squaredNorm());
+        }
+    }
+    return t + v;
+}
+
+struct planetary_system {
+    std::vector<double> mass;
+    double G = 1;
+    State start;
+};
+
+// A planet on the orbit (a, e) about G (m_0 + m), at pericentre (apocentre if
+// `apo`), its orbit turned by `node` about z and tilted by `tilt` about x.
+void place(planetary_system& s, std::size_t i, double a, double e, bool apo, double node, double tilt) {
+    const double gm = s.G * (s.mass[0] + s.mass[i]);
+    const double r = apo ? a * (1 + e) : a * (1 - e);
+    const double v = std::sqrt(gm * (2 / r - 1 / a));
+    const Eigen::Matrix3d R = (Eigen::AngleAxisd(node, V3::UnitZ()) * Eigen::AngleAxisd(tilt, V3::UnitX())).toRotationMatrix();
+    s.start.q.segment<3>(Eigen::Index(3 * i)) = R * V3(r, 0, 0);
+    s.start.p.segment<3>(Eigen::Index(3 * i)) = s.mass[i] * (R * V3(0, v, 0));
+}
+
+// A star of mass 1 (G = 1) and planets of eps and 0.6 eps on orbits a = 1 (e = 0.05)
+// and a = 1.8 (e = 0.08, tilted by 0.05): inner period 2 pi. Total momentum zero.
+planetary_system two_planets(double epsilon) {
+    planetary_system s{{1.0, epsilon, 0.6 * epsilon}, 1.0, State(9)};
+    place(s, 1, 1.0, 0.05, false, 0.0, 0.0);
+    place(s, 2, 1.8, 0.08, true, 2.0, 0.05);
+    s.start.p.segment<3>(0) = -(s.start.p.segment<3>(3) + s.start.p.segment<3>(6));
+    return s;
+}
+
+// The outer solar system with every planet's mass times `scale` (velocities kept).
+planetary_system outer_solar_system(double scale = 1) {
+    hamiltonians::outer_solar_system sys{};
+    for (int i = 1; i < sys.bodies; ++i) sys.mass[std::size_t(i)] *= scale;
+    const auto x = sys.initial_state();
+    return {std::vector<double>(sys.mass.begin(), sys.mass.end()), sys.G, State(x.q, x.p)};
+}
+
+// The largest relative energy error over n steps of h, checked every step.
+struct energy_run {
+    double worst = 0, first_half = 0, second_half = 0;
+};
+energy_run energy_errors(const planetary_system& s, const table& t, double h, std::size_t n) {
+    wisdom_holman_stepper<State> wh(s.mass, s.G, t);
+    State x = s.start;
+    const long double e0 = nbody_energy(s.mass, s.G, x);
+    energy_run r;
+    for (std::size_t k = 1; k <= n; ++k) {
+        wh.step(x, h);
+        const double e = double(std::fabs((nbody_energy(s.mass, s.G, x) - e0) / e0));
+        r.worst = std::max(r.worst, e);
+        (2 * k <= n ? r.first_half : r.second_half) = std::max(2 * k <= n ? r.first_half : r.second_half, e);
+    }
+    return r;
+}
+
+// Least-squares slope of log y against log x.
+double slope(const std::vector<double>& x, const std::vector<double>& y) {
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    const double n = double(x.size());
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        const double a = std::log(x[i]), b = std::log(y[i]);
+        sx += a, sy += b, sxx += a * a, sxy += a * b;
+    }
+    return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+V3 heliocentric_position(const State& x, std::size_t i) {
+    return x.q.segment<3>(Eigen::Index(3 * i)) - x.q.segment<3>(0);
+}
+}  // namespace
+
+// Rounding: each drift moves a planet's energy (its semi-major axis) by a few
+// eps, a random walk of size sqrt(k) eps after k drifts; the phase error that
+// drives grows as n^(3/2) eps (omega h) after n steps, omega h < 1 here. The
+// bound n^1.5 eps is that, with room; a wrong weight or GM is off by far more.
+TEST_CASE("wisdom_holman: with planet masses -> 0 every planet follows its exact Kepler orbit, to rounding") {
+    for (const char* name : {"leapfrog_kdk", "saba_3", "sbab_2"}) {
+        for (int which = 0; which < 2; ++which) {
+            const planetary_system s = which == 0 ? outer_solar_system(1e-20) : two_planets(1e-20);
+            const double h = which == 0 ? 50.0 : two_pi / 40;
+            const std::size_t n = 2000;
+            wisdom_holman_stepper<State> wh(s.mass, s.G, method(name));
+            State x = s.start;
+            wh.steps(x, h, n);
+            double worst = 0;
+            for (std::size_t i = 1; i < s.mass.size(); ++i) {
+                // The exact orbit: one drift of n h about G m_0 (the planets' pull is 1e-20 of it).
+                Eigen::Vector3d r = heliocentric_position(s.start, i);
+                Eigen::Vector3d v = s.start.p.segment<3>(Eigen::Index(3 * i)) / s.mass[i] - s.start.p.segment<3>(0) / s.mass[0];
+                kepler_drift(r, v, s.G * s.mass[0], double(n) * h);
+                worst = std::max(worst, (heliocentric_position(x, i) - r).norm() / r.norm());
+            }
+            const std::string label = std::string(name) + (which == 0 ? " outer solar system" : " two planets");
+            MESSAGE(label << ": largest relative position error after "
+                         << n << " steps = " << worst / eps << " eps, bound n^1.5 eps = " << std::pow(double(n), 1.5) << " eps");
+            CHECK(worst < std::pow(double(n), 1.5) * eps);
+        }
+    }
+}
+
+TEST_CASE("wisdom_holman: the leapfrog's energy error is bounded and scales as eps h^2") {
+    const table& lf = method("leapfrog_kdk");
+    SUBCASE("bounded over 2 10^4 steps") {
+        const energy_run r = energy_errors(two_planets(1e-3), lf, two_pi / 50, 20000);
+        MESSAGE("eps = 1e-3, h = 2 pi / 50: largest relative energy error " << r.first_half << " (first half), "
+                                                                            << r.second_half << " (second half)");
+        CHECK(r.second_half < 1.5 * r.first_half);
+    }
+    SUBCASE("slope in h and in eps") {
+        const double span = 40 * two_pi;  // 40 inner periods
+        std::vector<double> hs, errors;
+        for (double k : {25.0, 50.0, 100.0}) {
+            const double h = two_pi / k;
+            hs.push_back(h);
+            errors.push_back(energy_errors(two_planets(1e-4), lf, h, std::size_t(std::lround(span / h))).worst);
+        }
+        const double in_h = slope(hs, errors);
+        std::vector<double> epsilons, errors_eps;
+        for (double e : {1e-5, 1e-4, 1e-3}) {
+            epsilons.push_back(e);
+            errors_eps.push_back(energy_errors(two_planets(e), lf, two_pi / 50, 2000).worst);
+        }
+        const double in_eps = slope(epsilons, errors_eps);
+        MESSAGE("leapfrog: errors " << errors[0] << ", " << errors[1] << ", " << errors[2] << " at h = 2 pi / 25, 50, 100 (eps = 1e-4): slope "
+                                    << in_h << "; " << errors_eps[0] << ", " << errors_eps[1] << ", " << errors_eps[2]
+                                    << " at eps = 1e-5, 1e-4, 1e-3 (h = 2 pi / 50): slope " << in_eps);
+        CHECK(std::fabs(in_h - 2) < 0.15);
+        CHECK(std::fabs(in_eps - 1) < 0.15);
+    }
+}
+
+TEST_CASE("wisdom_holman: SABA_2's energy error scales as eps h^4 where eps^2 h^2 is small") {
+    const table& saba = method("saba_2");
+    const double span = 40 * two_pi;
+    std::vector<double> hs, errors;
+    for (double k : {25.0, 35.0, 50.0}) {
+        const double h = two_pi / k;
+        hs.push_back(h);
+        errors.push_back(energy_errors(two_planets(1e-6), saba, h, std::size_t(std::lround(span / h))).worst);
+    }
+    const double in_h = slope(hs, errors);
+    std::vector<double> epsilons, errors_eps;
+    for (double e : {1e-6, 1e-5, 1e-4}) {
+        epsilons.push_back(e);
+        errors_eps.push_back(energy_errors(two_planets(e), saba, two_pi / 25, 1000).worst);
+    }
+    const double in_eps = slope(epsilons, errors_eps);
+    MESSAGE("saba_2: errors " << errors[0] << ", " << errors[1] << ", " << errors[2] << " at h = 2 pi / 25, 35, 50 (eps = 1e-6): slope "
+                              << in_h << "; " << errors_eps[0] << ", " << errors_eps[1] << ", " << errors_eps[2]
+                              << " at eps = 1e-6, 1e-5, 1e-4 (h = 2 pi / 25): slope " << in_eps);
+    CHECK(std::fabs(in_h - 4) < 0.15);
+    CHECK(std::fabs(in_eps - 1) < 0.15);
+    // Where eps^2 h^2 dominates (eps = 1e-3, small steps: h^2 < eps), the error
+    // falls as h^2 only.
+    const planetary_system heavy = two_planets(1e-3);
+    const double coarse = energy_errors(heavy, saba, two_pi / 100, 2000).worst;
+    const double fine = energy_errors(heavy, saba, two_pi / 200, 4000).worst;
+    MESSAGE("saba_2 at eps = 1e-3: " << coarse << " at h = 2 pi / 100, " << fine << " at 2 pi / 200: slope "
+                                      << std::log2(coarse / fine));
+    CHECK(std::fabs(std::log2(coarse / fine) - 2) < 0.15);
+}
+
+TEST_CASE("wisdom_holman: on the outer solar system, far below the T + V leapfrog at the same step") {
+    const hamiltonians::outer_solar_system sys{};
+    using Fixed = phase_space<double, 18>;
+    const planetary_system s = outer_solar_system();
+    const double h = 50;  // days; Jupiter's period is 4332 days
+    const std::size_t n = 10000, every = 10;
+    const long double e0 = nbody_energy(s.mass, s.G, s.start);
+    auto wh = make_wisdom_holman<Fixed>(sys, method("leapfrog_kdk"));
+    auto tv = make_stepper<Fixed>(sys, method("leapfrog_kdk"));
+    Fixed a = sys.initial_state(), b = a;
+    double worst_wh = 0, worst_tv = 0;
+    for (std::size_t k = 0; k < n; k += every) {
+        wh.steps(a, h, every);
+        tv.steps(b, h, every);
+        worst_wh = std::max(worst_wh, double(std::fabs(nbody_energy(s.mass, s.G, State(a.q, a.p)) / e0 - 1)));
+        worst_tv = std::max(worst_tv, double(std::fabs(nbody_energy(s.mass, s.G, State(b.q, b.p)) / e0 - 1)));
+    }
+    MESSAGE("h = 50 days, 10^4 steps: largest relative energy error " << worst_wh << " (Wisdom-Holman), " << worst_tv
+                                                                       << " (T + V leapfrog): ratio " << worst_tv / worst_wh);
+    CHECK(worst_tv > 100 * worst_wh);
+    CHECK(wh.kepler_drifts() == n);
+    // The forces are carried over between calls handed back the state returned.
+    CHECK(wh.interaction_evaluations() == n + 1);
+}
+
+TEST_CASE("wisdom_holman: the outer solar system's energy error stays bounded over 10^5 steps (13700 years)") {
+    const hamiltonians::outer_solar_system sys{};
+    using Fixed = phase_space<double, 18>;
+    const planetary_system s = outer_solar_system();
+    const long double e0 = nbody_energy(s.mass, s.G, s.start);
+    auto wh = make_wisdom_holman<Fixed>(sys, method("leapfrog_kdk"));
+    Fixed x = sys.initial_state();
+    const std::size_t n = 100000, every = 10;
+    double halves[2] = {0, 0};
+    for (std::size_t k = 0; k < n; k += every) {
+        wh.steps(x, 50.0, every);
+        double& worst = halves[2 * k < n ? 0 : 1];
+        worst = std::max(worst, double(std::fabs(nbody_energy(s.mass, s.G, State(x.q, x.p)) / e0 - 1)));
+    }
+    MESSAGE("h = 50 days: largest relative energy error " << halves[0] << " (first 5 10^4 steps), " << halves[1]
+                                                          << " (last 5 10^4)");
+    CHECK(halves[1] < 1.5 * halves[0]);
+}
+
+TEST_CASE("wisdom_holman: steps(n) equals n calls of step() to rounding; counters; the drivers") {
+    const planetary_system s = two_planets(1e-3);
+    const double h = two_pi / 50;
+    for (const char* name : {"leapfrog_kdk", "leapfrog_dkd", "saba_2", "blanes_2013_aba_8_6_4"}) {
+        const table& t = method(name);
+        wisdom_holman_stepper<State> one(s.mass, s.G, t), many(s.mass, s.G, t);
+        State x = s.start, y = s.start;
+        for (int k = 0; k < 100; ++k) one.step(x, h);
+        many.steps(y, h, 100);
+        const double scale = std::max(x.q.cwiseAbs().maxCoeff(), 1.0);
+        CHECK(max_difference(x, y) < 1e3 * eps * scale);
+        // Joined sub-steps: one fewer kick or drift per step than the table has.
+        const auto ops = t.substeps();
+        const std::size_t kicks = std::size_t(std::count_if(ops.begin(), ops.end(), [](const substep& o) { return o.kind == substep::kick; }));
+        const std::size_t drifts = ops.size() - kicks;
+        const bool kick_ends = ops.front().kind == substep::kick && ops.back().kind == substep::kick;
+        const bool drift_ends = ops.front().kind == substep::drift && ops.back().kind == substep::drift;
+        CHECK(many.interaction_evaluations() == (kick_ends ? 100 * (kicks - 1) + 1 : 100 * kicks));
+        CHECK(many.kepler_drifts() == (drift_ends ? 100 * (drifts - 1) + 1 : 100 * drifts));
+        // A state changed between calls is converted afresh.
+        State z = s.start;
+        one.step(z, h);
+        wisdom_holman_stepper<State> fresh(s.mass, s.G, t);
+        State w = s.start;
+        fresh.step(w, h);
+        CHECK(max_difference(z, w) == 0);
+    }
+    // The driver of integrate.hpp, backwards and forwards.
+    wisdom_holman_stepper<State> wh(s.mass, s.G, method("saba_2"));
+    State x = s.start;
+    const run_summary r = integrate_until(wh, x, 0.0, 10 * two_pi, h);
+    CHECK(r.steps == 500);
+    wh.steps(x, -h, 500);
+    CHECK(max_difference(x, s.start) < 1e-12);
+}
+
+TEST_CASE("wisdom_holman: bad input names the body") {
+    const planetary_system s = two_planets(1e-3);
+    const table& lf = method("leapfrog_kdk");
+    SUBCASE("mass") {
+        CHECK_THROWS_WITH_AS(wisdom_holman_stepper<State>({1.0, 1e-3, 0.0}, 1.0, lf),
+                             doctest::Contains("mass of body 2 = 0"), invalid_argument);
+        CHECK_THROWS_WITH_AS(wisdom_holman_stepper<State>({1.0, -1e-3, 1e-3}, 1.0, lf),
+                             doctest::Contains("mass of body 1 = -0.001"), invalid_argument);
+        CHECK_THROWS_WITH_AS(wisdom_holman_stepper<State>({1.0, std::nan(""), 1e-3}, 1.0, lf),
+                             doctest::Contains("mass of body 1 = nan"), invalid_argument);
+        CHECK_THROWS_WITH_AS(wisdom_holman_stepper<State>({1.0}, 1.0, lf), doctest::Contains("1 masses"),
+                             invalid_argument);
+        CHECK_THROWS_WITH_AS(wisdom_holman_stepper<State>({1.0, 1e-3}, 0.0, lf), doctest::Contains("G = 0"),
+                             invalid_argument);
+        CHECK_THROWS_WITH_AS((wisdom_holman_stepper<phase_space<double, 18>>({1.0, 1e-3}, 1.0, lf)),
+                             doctest::Contains("fixed dimension 18"), invalid_argument);
+    }
+    SUBCASE("a planet at the star, two planets at one place") {
+        wisdom_holman_stepper<State> wh(s.mass, s.G, lf);
+        State x = s.start;
+        x.q.segment<3>(6) = x.q.segment<3>(0);
+        CHECK_THROWS_WITH_AS(wh.step(x, 0.1), doctest::Contains("body 2 is at the position of body 0 (the star)"),
+                             invalid_argument);
+        x = s.start;
+        x.q.segment<3>(6) = x.q.segment<3>(3);
+        CHECK_THROWS_WITH_AS(wh.step(x, 0.1), doctest::Contains("body 2 is at the position of body 1"),
+                             invalid_argument);
+    }
+    SUBCASE("non-finite state, wrong size, bad step") {
+        wisdom_holman_stepper<State> wh(s.mass, s.G, lf);
+        State x = s.start;
+        x.q[7] = std::numeric_limits<double>::infinity();
+        CHECK_THROWS_WITH_AS(wh.step(x, 0.1), doctest::Contains("position y of body 2 = inf"), invalid_argument);
+        x = s.start;
+        x.p[2] = std::nan("");
+        CHECK_THROWS_WITH_AS(wh.step(x, 0.1), doctest::Contains("momentum z of body 0 = nan"), invalid_argument);
+        State small(6);
+        CHECK_THROWS_WITH_AS(wh.step(small, 0.1), doctest::Contains("expected 3 per body, 9"), invalid_argument);
+        x = s.start;
+        CHECK_THROWS_WITH_AS(wh.step(x, 0.0), doctest::Contains("dt = 0"), invalid_argument);
+        // After a refused state the stepper still works from a good one.
+        wh.step(x, 0.1);
+        CHECK(is_finite(x));
+    }
+    SUBCASE("a run that blows up hands back a non-finite state") {
+        wisdom_holman_stepper<State> wh(s.mass, s.G, lf);
+        State x = s.start;
+        x.p.segment<3>(6) *= 1e200;  // planet 2 leaves at 1e200 times its speed
+        x.p.segment<3>(0) = -(x.p.segment<3>(3) + x.p.segment<3>(6));
+        wh.steps(x, 1e150, 3);
+        CHECK(!is_finite(x));
+        CHECK_THROWS_WITH_AS(wh.step(x, 0.1), doctest::Contains("expected a finite number"), invalid_argument);
+    }
+}
