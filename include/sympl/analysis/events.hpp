@@ -1,0 +1,277 @@
+#pragma once
+// Events located on the dense output (methods/dense_output.hpp): a function
+// g(state, t) of the orbit (q[1] for a Poincare section, q.p for pericentre
+// and apocentre passages, |q| - r for a close approach), its sign changes
+// found between step ends (and, optionally, at a few interior points of the
+// interpolant, so that g crossing zero and back within one step is not
+// missed), and each root located on the interpolant by Brent's method
+// (Brent 1973, "Algorithms for Minimization without Derivatives", ch. 4: the
+// bracket kept, inverse quadratic interpolation or secant steps when they
+// stay inside it, bisection otherwise).
+//
+// An event time is a zero of g along the interpolant to within
+// event_options::time_tolerance + 4 eps |t|; the interpolant's own error
+// (dense_output.hpp: O(dt^4) for the cubic, O(dt^6) in q for the quintic,
+// plus the method's error at the step ends) moves it by that error over
+// |dg/dt|. A crossing counts in the step (ta, tb] in which g goes from < 0 to
+// >= 0 (rising) or from > 0 to <= 0 (falling): a zero at t0 is not an event,
+// one exactly at a step end is counted once.
+//
+// The stepper runs exactly as integrate_until runs it with an observer (the
+// steps are not shortened to land on an event). An event whose action is
+// `stop` ends the run at the first such crossing: x is then the state
+// INTERPOLATED at the event time (not a state the stepper produced), the
+// stepper has taken the step containing the event and no further one, and
+// the events recorded are those up to and including it.
+//
+// Compared with section_crossings (poincare_section.hpp: upward crossings of
+// q_k = 0 by bisection on the cubic), an event g = q[k], rising, gives the
+// same points through the common driver, with any g, direction and action.
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <functional>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "../core/error.hpp"
+#include "../core/hamiltonian.hpp"
+#include "../core/integrate.hpp"
+#include "../core/phase_space.hpp"
+#include "../methods/dense_output.hpp"
+
+namespace sympl {
+
+enum class event_direction { rising, falling, both };
+enum class event_action { record, stop };
+
+template <class State>
+struct event {
+    std::function<typename State::scalar(const State&, typename State::scalar)> g;
+    event_direction direction = event_direction::both;
+    event_action action = event_action::record;
+};
+
+struct event_options {
+    hermite_order order = hermite_order::cubic;
+    // Points inside each step, equally spaced, where g is also evaluated on the
+    // interpolant (each costs nothing but g; any > 0 needs the derivatives at
+    // every step end: one force and one velocity per step, quintic two velocities).
+    int interior_points = 0;
+    // Absolute tolerance on an event time (>= 0); 0 means to rounding.
+    double time_tolerance = 0;
+};
+
+template <class State>
+struct event_hit {
+    std::size_t event = 0;  // index into the events given
+    typename State::scalar t{};
+    State state;             // interpolated at t
+    bool rising = false;     // g went from < 0 to >= 0
+};
+
+template <class State>
+struct event_run : dense_summary {
+    std::vector<event_hit<State>> hits;  // in time order
+    bool stopped = false;                // a stop event ended the run (then t is its time)
+};
+
+namespace detail {
+// A zero of f on [a, b] with fa < 0 <= fb or fa > 0 >= fb: Brent's method
+// (Brent 1973, ch. 4). The result b has a sign change of f between b and the
+// kept point c with |c - b| <= 2 tol, tol = 2 eps |b| + tolerance / 2.
+template <class T, class F>
+T brent_root(F&& f, T a, T b, T fa, T fb, T tolerance) {
+    using std::abs;
+    const T eps = std::numeric_limits<T>::epsilon();
+    T c = a, fc = fa, d = b - a, e = d;
+    for (int iteration = 0; iteration < 200; ++iteration) {
+        if (abs(fc) < abs(fb)) {  // b is the best estimate; c stays across the root from it
+            a = b;
+            b = c;
+            c = a;
+            fa = fb;
+            fb = fc;
+            fc = fa;
+        }
+        const T tol = 2 * eps * abs(b) + tolerance / 2;
+        const T m = (c - b) / 2;
+        if (abs(m) <= tol || fb == T(0)) return b;
+        if (abs(e) < tol || abs(fa) <= abs(fb)) {
+            d = e = m;  // bisection
+        } else {
+            T p, q;
+            const T s = fb / fa;
+            if (a == c) {  // secant
+                p = 2 * m * s;
+                q = 1 - s;
+            } else {  // inverse quadratic through a, b, c
+                const T qa = fa / fc, r = fb / fc;
+                p = s * (2 * m * qa * (qa - r) - (b - a) * (r - 1));
+                q = (qa - 1) * (r - 1) * (s - 1);
+            }
+            if (p > 0) q = -q; else p = -p;
+            const T previous = e;
+            e = d;
+            if (2 * p < 3 * m * q - abs(tol * q) && p < abs(previous * q / 2)) {
+                d = p / q;
+            } else {
+                d = e = m;
+            }
+        }
+        a = b;
+        fa = fb;
+        b += abs(d) > tol ? d : (m > 0 ? tol : -tol);
+        fb = f(b);
+        if ((fb > 0) == (fc > 0)) {  // keep the sign change between b and c
+            c = a;
+            fc = fa;
+            d = e = b - a;
+        }
+    }
+    return b;
+}
+
+template <class T>
+void check_event_value(T g, std::size_t i, T t, const char* who) {
+    using std::isfinite;
+    if (!isfinite(g))
+        throw invalid_argument(std::string(who) + ": event " + std::to_string(i) + "'s g = " + number(g) +
+                               " at t = " + number(t) + "; expected a finite value");
+}
+}  // namespace detail
+
+// Runs stepper from x at t0 up to t_end with steps of dt (integrate_until's
+// steps) and reports the events' crossings; x ends at t_end, or at the first
+// stop event, interpolated there. h is the Hamiltonian the stepper runs.
+template <fixed_step_stepper Stepper, class H>
+    requires separable_hamiltonian<H, typename Stepper::state_type::vector>
+event_run<typename Stepper::state_type> integrate_events(Stepper& stepper, const H& h,
+                                                         typename Stepper::state_type& x, typename Stepper::scalar t0,
+                                                         typename Stepper::scalar t_end, typename Stepper::scalar dt,
+                                                         const std::vector<event<typename Stepper::state_type>>& events,
+                                                         event_options options = {}) {
+    using T = typename Stepper::scalar;
+    using State = typename Stepper::state_type;
+    using detail::number;
+    const char* who = "integrate_events";
+    detail::check_dt(dt, who);
+    using std::isfinite;
+    if (!isfinite(t0) || !isfinite(t_end) || !(t_end > t0))
+        throw invalid_argument(std::string(who) + ": t_end = " + number(t_end) + " with t0 = " + number(t0) +
+                               "; expected finite times with t_end > t0");
+    if (options.interior_points < 0 || options.interior_points > 1000)
+        throw invalid_argument(std::string(who) + ": interior_points = " + std::to_string(options.interior_points) +
+                               "; expected 0 <= interior_points <= 1000");
+    if (!(options.time_tolerance >= 0) || !std::isfinite(options.time_tolerance))
+        throw invalid_argument(std::string(who) + ": time_tolerance = " + number(options.time_tolerance) +
+                               "; expected a finite tolerance >= 0");
+    for (std::size_t i = 0; i < events.size(); ++i) {
+        const auto d = events[i].direction;
+        const auto a = events[i].action;
+        if (!events[i].g)
+            throw invalid_argument(std::string(who) + ": event " + std::to_string(i) +
+                                   " has no function g; expected g(state, t)");
+        if (d != event_direction::rising && d != event_direction::falling && d != event_direction::both)
+            throw invalid_argument(std::string(who) + ": event " + std::to_string(i) + "'s direction = " +
+                                   std::to_string(static_cast<int>(d)) + "; expected rising, falling or both");
+        if (a != event_action::record && a != event_action::stop)
+            throw invalid_argument(std::string(who) + ": event " + std::to_string(i) + "'s action = " +
+                                   std::to_string(static_cast<int>(a)) + "; expected record or stop");
+    }
+
+    struct stop_signal {};  // ends integrate_until from the observer at a stop event
+    step_interpolant<H, State> dense(h, options.order);
+    const std::size_t n_events = events.size();
+    const int k = options.interior_points;
+    std::vector<T> g_end(n_events), g_samples(n_events * std::size_t(k + 2)), times(std::size_t(k + 2));
+    std::vector<event_hit<State>> found;
+    event_run<State> result;
+    State y = x;
+    std::size_t observed = 0;
+    const auto g_of = [&](std::size_t i, const State& s, T t) {
+        const T g = events[i].g(s, t);
+        detail::check_event_value(g, i, t, who);
+        return g;
+    };
+
+    auto observer = [&](const State& s, T t) {
+        if (observed++ == 0) {
+            dense.start(s, t);
+            for (std::size_t i = 0; i < n_events; ++i) g_end[i] = g_of(i, s, t);
+            return;
+        }
+        dense.push(s, t);
+        const T ta = dense.t0(), tb = dense.t1(), step = tb - ta;
+        // g at the samples: the start (kept from the last step), interior points, the end.
+        const std::size_t m = std::size_t(k) + 2;
+        times[0] = ta;
+        times[m - 1] = tb;
+        for (std::size_t j = 1; j + 1 < m; ++j) times[j] = ta + step * (T(j) / T(m - 1));
+        for (std::size_t i = 0; i < n_events; ++i) {
+            g_samples[i * m] = g_end[i];
+            g_samples[i * m + m - 1] = g_end[i] = g_of(i, s, tb);
+        }
+        for (std::size_t j = 1; j + 1 < m; ++j) {
+            dense.evaluate(times[j], y);
+            for (std::size_t i = 0; i < n_events; ++i) g_samples[i * m + j] = g_of(i, y, times[j]);
+        }
+        found.clear();
+        const T tolerance = T(options.time_tolerance);
+        for (std::size_t i = 0; i < n_events; ++i)
+            for (std::size_t j = 0; j + 1 < m; ++j) {
+                const T ga = g_samples[i * m + j], gb = g_samples[i * m + j + 1];
+                const bool rising = ga < 0 && gb >= 0, falling = ga > 0 && gb <= 0;
+                const auto d = events[i].direction;
+                if (!((rising && d != event_direction::falling) || (falling && d != event_direction::rising))) continue;
+                const auto along = [&](T t_) {
+                    dense.evaluate(t_, y);
+                    return g_of(i, y, t_);
+                };
+                event_hit<State> hit;
+                hit.event = i;
+                hit.rising = rising;
+                hit.t = detail::brent_root(along, times[j], times[j + 1], ga, gb, tolerance);
+                dense.evaluate(hit.t, hit.state);
+                found.push_back(std::move(hit));
+            }
+        std::stable_sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.t < b.t; });
+        for (auto& hit : found) {
+            const bool stop = events[hit.event].action == event_action::stop;
+            result.hits.push_back(std::move(hit));
+            if (stop) throw stop_signal{};
+        }
+    };
+
+    const auto f0 = detail::forces(stepper);
+    const auto v0 = detail::velocities(stepper);
+    try {
+        static_cast<run_summary&>(result) = integrate_until(stepper, x, t0, t_end, dt, observer);
+    } catch (const stop_signal&) {
+        const event_hit<State>& last = result.hits.back();
+        x = last.state;
+        result.stopped = true;
+        result.steps = observed - 1;
+        result.t = static_cast<double>(primal(last.t));
+        result.force_evaluations = detail::forces(stepper) - f0;
+        result.velocity_evaluations = detail::velocities(stepper) - v0;
+    }
+    result.extra_force_evaluations = dense.force_evaluations();
+    result.extra_velocity_evaluations = dense.velocity_evaluations();
+    return result;
+}
+
+// The same with the stepper's own Hamiltonian.
+template <fixed_step_stepper Stepper>
+    requires requires(const Stepper& s) { s.hamiltonian(); }
+event_run<typename Stepper::state_type> integrate_events(Stepper& stepper, typename Stepper::state_type& x,
+                                                         typename Stepper::scalar t0, typename Stepper::scalar t_end,
+                                                         typename Stepper::scalar dt,
+                                                         const std::vector<event<typename Stepper::state_type>>& events,
+                                                         event_options options = {}) {
+    return integrate_events(stepper, stepper.hamiltonian(), x, t0, t_end, dt, events, options);
+}
+
+}  // namespace sympl

@@ -1,0 +1,288 @@
+// Dense output (Hairer, Norsett & Wanner I, sec. II.6): the cubic and quintic
+// Hermite interpolants inside the steps, their error against exact solutions
+// and its order, the run unchanged bit for bit, the evaluations it costs.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <vector>
+
+#include <sympl/sympl.hpp>
+#include <sympl/methods/dense_output.hpp>
+#include <sympl/hamiltonians/harmonic_oscillator.hpp>
+#include <sympl/hamiltonians/kepler.hpp>
+
+using namespace sympl;
+
+namespace {
+using S2 = phase_space<double, 2>;
+const double two_pi = 2 * std::acos(-1.0);
+const hamiltonians::harmonic_oscillator oscillator{};
+const hamiltonians::kepler kepler{};
+const S2 oscillator_start(Eigen::Vector2d(1, 0), Eigen::Vector2d(0, 0.5));  // q = (cos t, sin t / 2)
+
+S2 oscillator_exact(double t) { return oscillator.exact(oscillator_start, t); }
+S2 kepler_exact(double t) { return hamiltonians::kepler::exact_state(0.5, t); }
+
+// The exact flow as a (time-aware) stepper: step ends exact to rounding, so
+// what is measured between them is the interpolation error alone.
+struct exact_stepper {
+    using state_type = S2;
+    using scalar = double;
+    std::function<S2(double)> exact;
+    void step(S2& x, double t, double dt) { x = exact(t + dt); }
+};
+
+struct errors {
+    double q = 0, p = 0;
+};
+
+// Largest error at the interior points theta = 1/4, 1/2, 3/4 of every step over [0, span].
+template <class Stepper, class H>
+errors interpolation_error(Stepper stepper, const H& h, const std::function<S2(double)>& exact, double span, std::size_t n,
+                           hermite_order order) {
+    const double dt = span / double(n);
+    std::vector<double> times;
+    for (std::size_t i = 0; i < n; ++i)
+        for (double theta : {0.25, 0.5, 0.75}) times.push_back((double(i) + theta) * dt);
+    S2 x = exact(0);
+    errors e;
+    std::size_t calls = 0;
+    integrate_dense(stepper, h, x, 0.0, span, dt, times, [&](const S2& y, double t) {
+        const S2 z = exact(t);
+        e.q = std::max(e.q, (y.q - z.q).cwiseAbs().maxCoeff());
+        e.p = std::max(e.p, (y.p - z.p).cwiseAbs().maxCoeff());
+        ++calls;
+    }, order);
+    CHECK(calls == times.size());
+    return e;
+}
+
+double slope(double coarse, double fine) { return std::log2(coarse / fine); }
+}  // namespace
+
+TEST_CASE("dense output: the cubic Hermite on the oscillator meets its error bound dt^4/384 max|x''''|") {
+    // Every component of q and p is a sinusoid of amplitude <= 1, so |x''''| <= 1,
+    // and at a step's midpoint the bound is reached where |x''''| = 1.
+    for (std::size_t n : {32, 64}) {
+        const double dt = two_pi / double(n);
+        const errors e = interpolation_error(exact_stepper{oscillator_exact}, oscillator, oscillator_exact, two_pi, n,
+                                             hermite_order::cubic);
+        const double bound = std::pow(dt, 4) / 384;
+        CHECK(e.q <= bound * (1 + 1e-6));
+        CHECK(e.p <= bound * (1 + 1e-6));
+        CHECK(e.q >= 0.9 * bound);  // the bound is sharp: a wrong basis would miss it either way
+    }
+}
+
+TEST_CASE("dense output: the quintic Hermite on the oscillator meets its bound dt^6/46080 max|q^(6)|") {
+    for (std::size_t n : {32, 64}) {
+        const double dt = two_pi / double(n);
+        const errors e = interpolation_error(exact_stepper{oscillator_exact}, oscillator, oscillator_exact, two_pi, n,
+                                             hermite_order::quintic);
+        const double bound = std::pow(dt, 6) / 46080;
+        CHECK(e.q <= bound * (1 + 1e-5) + 1e-15);
+        CHECK(e.q >= 0.9 * bound);
+        // p = M dq/dt: one order less, O(dt^5), still well below the cubic's dt^4/384.
+        CHECK(e.p <= std::pow(dt, 4) / 384 / 10);
+    }
+}
+
+TEST_CASE("dense output: measured orders, oscillator and Kepler e = 0.5 (cubic 4, quintic 6 in q and 5 in p)") {
+    // max error over interior points as dt halves: dt^4 for the cubic, dt^6
+    // for the quintic's q, dt^5 for its p (the derivative of the quintic).
+    struct expect {
+        hermite_order order;
+        double q, p;
+    };
+    for (const expect x : {expect{hermite_order::cubic, 4, 4}, expect{hermite_order::quintic, 6, 5}}) {
+        CAPTURE(static_cast<int>(x.order));
+        std::vector<errors> osc, kep;
+        // Kepler's pericentre (r = 0.5, speed sqrt 3) needs smaller steps to be asymptotic:
+        // measured slopes 3.55, 3.89 (cubic q) from 32 steps per orbit, 3.89, 3.97 from 128.
+        for (std::size_t n : {32, 64, 128}) {
+            osc.push_back(interpolation_error(exact_stepper{oscillator_exact}, oscillator, oscillator_exact, two_pi,
+                                              n, x.order));
+            kep.push_back(interpolation_error(exact_stepper{kepler_exact}, kepler, kepler_exact, two_pi, 4 * n,
+                                              x.order));
+        }
+        for (std::size_t i = 0; i + 1 < osc.size(); ++i) {
+            CAPTURE(i);
+            CHECK(std::fabs(slope(osc[i].q, osc[i + 1].q) - x.q) <= 0.3);
+            CHECK(std::fabs(slope(osc[i].p, osc[i + 1].p) - x.p) <= 0.3);
+            CHECK(std::fabs(slope(kep[i].q, kep[i + 1].q) - x.q) <= 0.3);
+            CHECK(std::fabs(slope(kep[i].p, kep[i + 1].p) - x.p) <= 0.3);
+        }
+        MESSAGE("order " << static_cast<int>(x.order) << ": oscillator q " << osc[0].q << " " << osc[1].q << " "
+                         << osc[2].q << ", p " << osc[0].p << " " << osc[1].p << " " << osc[2].p << "; Kepler q "
+                         << kep[0].q << " " << kep[1].q << " " << kep[2].q << ", p " << kep[0].p << " " << kep[1].p
+                         << " " << kep[2].p);
+    }
+}
+
+TEST_CASE("dense output: with a real method the error is the step error plus the interpolation error") {
+    // Yoshida's order-8 composition on Kepler e = 0.5: at the step ends its own
+    // error; inside, at most that error carried by the interpolant plus the
+    // interpolation bound. The cubic interpolant of the grid's errors e_i
+    // (with slopes dt |e'| <~ dt |F'| e) stays below 1.5 max e_i for these dt.
+    const auto stepper = make_stepper<S2>(kepler, method("yoshida_8"));
+    for (std::size_t n : {200, 400}) {
+        const double dt = two_pi / double(n);
+        std::vector<double> ends, mids;
+        for (std::size_t i = 1; i < n; ++i) ends.push_back(double(i) * dt);
+        for (std::size_t i = 0; i < n; ++i) mids.push_back((double(i) + 0.5) * dt);
+        double grid = 0, inside = 0, interpolation = 0;
+        S2 x = kepler_exact(0);
+        auto s = stepper;
+        integrate_dense(s, x, 0.0, two_pi, dt, ends, [&](const S2& y, double t) {
+            grid = std::max(grid, max_difference(y, kepler_exact(t)));
+        });
+        x = kepler_exact(0);
+        s = stepper;
+        integrate_dense(s, x, 0.0, two_pi, dt, mids, [&](const S2& y, double t) {
+            inside = std::max(inside, max_difference(y, kepler_exact(t)));
+        });
+        const errors pure = interpolation_error(exact_stepper{kepler_exact}, kepler, kepler_exact, two_pi, n,
+                                                hermite_order::cubic);
+        interpolation = std::max(pure.q, pure.p);
+        CAPTURE(n);
+        CAPTURE(grid);
+        CAPTURE(interpolation);
+        CHECK(inside <= interpolation + 1.5 * grid);
+        CHECK(inside >= 0.5 * interpolation);  // the interpolation error is seen, not hidden by the grid's
+        MESSAGE(n << " steps: grid error " << grid << ", interpolation alone " << interpolation << ", total " << inside);
+    }
+}
+
+TEST_CASE("dense output: the run is integrate_until's, bit for bit, and each step end is evaluated once") {
+    const auto make = [] { return make_stepper<S2>(kepler, method("yoshida_8")); };
+    const double t_end = 7.03, dt = 0.05;  // dt does not divide the span: a shortened last step
+    // integrate_until with an observer, the step ends recorded.
+    auto s1 = make();
+    S2 x1 = kepler_exact(0);
+    std::vector<S2> ends;
+    std::vector<double> end_times;
+    const run_summary r1 = integrate_until(s1, x1, 0.0, t_end, dt, [&](const S2& y, double t) {
+        ends.push_back(y);
+        end_times.push_back(t);
+    });
+    // The same with dense output at every step end and every midpoint.
+    std::vector<double> times;
+    for (std::size_t i = 0; i < end_times.size(); ++i) {
+        times.push_back(end_times[i]);
+        if (i + 1 < end_times.size()) times.push_back((end_times[i] + end_times[i + 1]) / 2);
+    }
+    auto s2 = make();
+    S2 x2 = kepler_exact(0);
+    std::vector<S2> seen;
+    const dense_summary r2 = integrate_dense(s2, x2, 0.0, t_end, dt, times, [&](const S2& y, double) { seen.push_back(y); });
+    CHECK(x2.q == x1.q);
+    CHECK(x2.p == x1.p);
+    CHECK(r2.steps == r1.steps);
+    CHECK(r2.force_evaluations == r1.force_evaluations);
+    CHECK(r2.t == r1.t);
+    REQUIRE(seen.size() == times.size());
+    bool same_ends = true;
+    for (std::size_t i = 0; i < ends.size(); ++i) same_ends = same_ends && seen[2 * i].q == ends[i].q && seen[2 * i].p == ends[i].p;
+    CHECK(same_ends);
+    CHECK(r2.outputs == times.size());
+    // Every step interpolated: each of the steps + 1 ends evaluated once.
+    CHECK(r2.extra_force_evaluations == r1.steps + 1);
+    CHECK(r2.extra_velocity_evaluations == r1.steps + 1);
+
+    // A time-aware classic stepper against integrate_until without an observer.
+    const auto rk = [] { return make_classic<rk4, S2>(kepler); };
+    auto c1 = rk();
+    auto c2 = rk();
+    S2 y1 = kepler_exact(0), y2 = y1;
+    integrate_until(c1, y1, 0.0, t_end, dt);
+    const std::vector<double> one{3.0};
+    integrate_dense(c2, kepler, y2, 0.0, t_end, dt, one, [](const S2&, double) {});
+    CHECK(y2.q == y1.q);
+    CHECK(y2.p == y1.p);
+}
+
+TEST_CASE("dense output: one output costs the two ends of its step only") {
+    const std::vector<double> one{1.234};
+    for (const hermite_order order : {hermite_order::cubic, hermite_order::quintic}) {
+        auto s = make_stepper<S2>(oscillator, method("leapfrog_kdk"));
+        S2 x = oscillator_start;
+        double at = 0;
+        const dense_summary r = integrate_dense(s, x, 0.0, 10.0, 0.1, one, [&](const S2&, double t) { at = t; }, order);
+        CHECK(at == 1.234);
+        CHECK(r.extra_force_evaluations == 2);
+        if (order == hermite_order::cubic) {
+            CHECK(r.extra_velocity_evaluations == 2);
+        } else {
+            // 2 velocities, 2 M^-1 F, and at most 2 for M (q1 - q0) when M is the identity.
+            CHECK(r.extra_velocity_evaluations >= 4);
+            CHECK(r.extra_velocity_evaluations <= 6);
+        }
+    }
+}
+
+TEST_CASE("dense output: a mass other than 1: the quintic's p = M dq/dt through M (q1 - q0)") {
+    // H = p^2/(2m) + m w^2 q^2/2 with m = 3: velocity = p/3, so p = 3 dq/dt,
+    // and M (q1 - q0) comes from conjugate gradients on velocity(). The
+    // quintic's error e(t) = q^(6)/720 (t - ta)^3 (t - tb)^3 differentiated:
+    // |dp| <= m max|q^(6)| dt^5 max|3 s^2 (1 - s)^2 (1 - 2 s)| / 720, the max
+    // 0.0536 (s = 0.28), and 0.0527 at s = 1/4 where it is sampled.
+    const hamiltonians::harmonic_oscillator heavy{3.0, 1.0};
+    const S2 x0(Eigen::Vector2d(1, 0.2), Eigen::Vector2d(0.3, 1.5));
+    const auto exact = [&](double t) { return heavy.exact(x0, t); };
+    const double a6 = std::max(std::hypot(1.0, 0.3 / 3), std::hypot(0.2, 1.5 / 3));  // amplitude of q's components
+    for (std::size_t n : {100, 200}) {
+        const double dt = two_pi / double(n);
+        const errors e = interpolation_error(exact_stepper{exact}, heavy, exact, two_pi, n, hermite_order::quintic);
+        const double bound = 3 * a6 * std::pow(dt, 5) * 0.0536 / 720;
+        CAPTURE(n);
+        CHECK(e.p <= 1.05 * bound);
+        CHECK(e.p >= 0.5 * bound);  // the sampled points see the leading term (s = 1/4: 0.0527)
+        CHECK(e.q <= 1.05 * a6 * std::pow(dt, 6) / 46080 + 1e-15);
+    }
+}
+
+TEST_CASE("dense output: bad output times and orders are refused, naming the value") {
+    auto s = make_stepper<S2>(oscillator, method("leapfrog_kdk"));
+    S2 x = oscillator_start;
+    const auto none = [](const S2&, double) {};
+    const std::vector<double> unsorted{1.0, 0.5}, late{12.0}, early{-1.0}, nan{std::nan("")}, unsorted_not{0.5, 1.0};
+    CHECK_THROWS_WITH_AS(integrate_dense(s, x, 0.0, 10.0, 0.1, unsorted, none),
+                         doctest::Contains("output_times[1] = 0.5 is before output_times[0] = 1"), invalid_argument);
+    CHECK_THROWS_WITH_AS(integrate_dense(s, x, 0.0, 10.0, 0.1, late, none), doctest::Contains("output_times[0] = 12"),
+                         invalid_argument);
+    CHECK_THROWS_WITH_AS(integrate_dense(s, x, 0.0, 10.0, 0.1, early, none), doctest::Contains("output_times[0] = -1"),
+                         invalid_argument);
+    CHECK_THROWS_WITH_AS(integrate_dense(s, x, 0.0, 10.0, 0.1, nan, none), doctest::Contains("output_times[0] = nan"),
+                         invalid_argument);
+    CHECK_THROWS_WITH_AS(integrate_dense(s, x, 0.0, 10.0, 0.0, late, none), doctest::Contains("dt = 0"),
+                         invalid_argument);
+    CHECK_THROWS_WITH_AS(integrate_dense(s, x, 5.0, 1.0, 0.1, late, none), doctest::Contains("t_end = 1"),
+                         invalid_argument);
+    CHECK_THROWS_WITH_AS(integrate_dense(s, x, 0.0, 10.0, 0.1, unsorted_not, none, static_cast<hermite_order>(4)),
+                         doctest::Contains("order = 4"), invalid_argument);
+    CHECK(x.q == oscillator_start.q);  // nothing ran
+}
+
+TEST_CASE("dense output: a dynamic-size state gives the fixed-size state's values") {
+    using SD = phase_space<double>;
+    const std::vector<double> times{0.05, 1.234, 2.5, 3.0};
+    for (const hermite_order order : {hermite_order::cubic, hermite_order::quintic}) {
+        std::vector<S2> fixed;
+        std::vector<SD> dynamic;
+        auto s1 = make_stepper<S2>(kepler, method("leapfrog_kdk"));
+        S2 x1 = kepler_exact(0);
+        integrate_dense(s1, x1, 0.0, 3.0, 0.1, times, [&](const S2& y, double) { fixed.push_back(y); }, order);
+        auto s2 = make_stepper<SD>(kepler, method("leapfrog_kdk"));
+        SD x2 = kepler_exact(0).cast<double, Eigen::Dynamic>();
+        integrate_dense(s2, x2, 0.0, 3.0, 0.1, times, [&](const SD& y, double) { dynamic.push_back(y); }, order);
+        REQUIRE(dynamic.size() == fixed.size());
+        for (std::size_t i = 0; i < fixed.size(); ++i) {
+            CHECK(dynamic[i].size() == 2);
+            CHECK((dynamic[i].q - fixed[i].q).cwiseAbs().maxCoeff() <= 1e-14);
+            CHECK((dynamic[i].p - fixed[i].p).cwiseAbs().maxCoeff() <= 1e-14);
+        }
+    }
+}
