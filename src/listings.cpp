@@ -42,7 +42,7 @@ void print_systems(bool json) {
                       << p.expected() << "; " << p.meaning << "\n";
     }
     std::cout << "\nmethod kinds:\n";
-    for (const auto& k : method_kinds()) std::cout << "    " << std::left << std::setw(10) << k.label << k.description << "\n";
+    for (const auto& k : method_kinds()) std::cout << "    " << std::left << std::setw(19) << k.label << k.description << "\n";
     std::cout << "besides the catalog's tables (sympl tables) and a scene's own [[table]]s:";
     for (const auto& name : method_names_beside_tables()) std::cout << " " << name;
     std::cout << "\n";

@@ -6,6 +6,7 @@
 
 #include <sympl/methods/catalog.hpp>
 #include <sympl/core/error.hpp>
+#include <sympl/methods/extended_phase_space.hpp>
 #include <sympl/methods/extrapolation.hpp>
 
 namespace sympl::app {
@@ -17,7 +18,7 @@ static_assert([] {
     return true;
 }());
 
-const std::array<method_kind_entry, 8>& method_kinds() { return method_kind_entries; }
+const std::array<method_kind_entry, method_kind_count>& method_kinds() { return method_kind_entries; }
 
 classic_facts classic_at(std::size_t index) {
     classic_facts facts{"", needs::any, false};
@@ -32,15 +33,29 @@ std::string why_not(needs n, const system_form& form) {
     switch (n) {
         case needs::any: return "";
         case needs::separable_hamiltonian:
-            return form.separable_hamiltonian ? ""
-                                              : "needs a separable Hamiltonian H = T(p) + V(q); this system is not "
-                                                "Hamiltonian (use a classic method)";
+            if (form.separable_hamiltonian) return "";
+            return form.general_hamiltonian ? "needs a separable Hamiltonian H = T(p) + V(q); this system's H(q, p) does "
+                                              "not split (use gauss_4, gauss_6, semiexplicit(<table>) or tao(<table>))"
+                                            : "needs a separable Hamiltonian H = T(p) + V(q); this system is not "
+                                              "Hamiltonian (use a classic method)";
+        case needs::general_hamiltonian:
+            return form.general_hamiltonian || form.separable_hamiltonian
+                       ? ""
+                       : "needs a Hamiltonian H(q, p); this system is not Hamiltonian (use a classic method)";
+        case needs::quadratic_kinetic:
+            if (!form.separable_hamiltonian) return why_not(needs::separable_hamiltonian, form);
+            return form.quadratic_kinetic ? ""
+                                          : "needs a kinetic energy quadratic in p (the Runge-Kutta-Nystrom form q'' = "
+                                            "F(q)); this system's is not (use a table)";
         case needs::newtonian:
             return form.newtonian ? ""
                                   : "needs Newton's form x'' = a(x, v, t); this system is Hamiltonian (use velocity_verlet)";
         case needs::splitting:
-            return form.separable_hamiltonian || form.conformal
-                       ? ""
+            if (form.separable_hamiltonian || form.conformal) return "";
+            return form.general_hamiltonian
+                       ? "needs a separable Hamiltonian H = T(p) + V(q) or a damped, driven one (dp/dt = F(q, t) - gamma "
+                         "p); this system's H(q, p) does not split (use gauss_4, gauss_6, semiexplicit(<table>) or "
+                         "tao(<table>))"
                        : "needs a separable Hamiltonian H = T(p) + V(q) or a damped, driven one (dp/dt = F(q, t) - "
                          "gamma p); this system is neither (use a classic method)";
         case needs::damped_split:
@@ -106,6 +121,22 @@ method_spec extrapolated(const std::string& name, const std::map<std::string, ta
     inner->extrapolation_columns = columns;
     return *inner;
 }
+
+// tao(<table>) or semiexplicit(<table>): a plain table (the catalog's or the
+// scene's) that composes leapfrog steps symmetrically, checked as the library
+// checks it.
+method_spec on_extended_phase_space(const std::string& name, method_kind kind, std::size_t prefix,
+                                    const std::map<std::string, table>& inline_tables) {
+    const std::string inner_name = trimmed(name.substr(prefix, name.size() - prefix - 1));
+    const std::string usage = "; expected " + name.substr(0, prefix) +
+                              "<a symmetric composition of leapfrog steps: leapfrog_kdk, yoshida_4, yoshida_6, "
+                              "kahan_li_8, ...>)";
+    const auto inner = resolve_method(inner_name, inline_tables);
+    if (!inner || inner->kind != method_kind::table || inner->extrapolation_columns || inner->compensated)
+        throw invalid_argument("method '" + name + "': '" + inner_name + "' is not a table" + usage);
+    sympl::detail::leapfrog_composition_weights(*inner->coefficients, "method '" + name + "'");  // throws naming it
+    return method_spec{name, kind, inner->coefficients};
+}
 }  // namespace
 
 std::optional<method_spec> resolve_method(const std::string& name, const std::map<std::string, table>& inline_tables) {
@@ -127,6 +158,10 @@ std::optional<method_spec> resolve_method(const std::string& name, const std::ma
                                    "' has force-gradient kicks; expected logh(<table without them>)");
         return method_spec{name, method_kind::logh, inner->coefficients};
     }
+    if (name.size() > 5 && name.rfind("tao(", 0) == 0 && name.back() == ')')
+        return on_extended_phase_space(name, method_kind::tao, 4, inline_tables);
+    if (name.size() > 14 && name.rfind("semiexplicit(", 0) == 0 && name.back() == ')')
+        return on_extended_phase_space(name, method_kind::semiexplicit, 13, inline_tables);
     for (const method_kind_entry& k : method_kind_entries)
         if (*k.scene_name && name == k.scene_name) return method_spec{name, k.kind, std::nullopt};
     if (const auto index = classic_index(name)) {

@@ -18,7 +18,12 @@
 
 namespace sympl::app {
 
-enum class method_kind { table, processed, logh, classic, odeint_rk4, odeint_dopri5, odeint_fehlberg78, odeint_bulirsch_stoer };
+enum class method_kind {
+    table, processed, logh, classic, odeint_rk4, odeint_dopri5, odeint_fehlberg78, odeint_bulirsch_stoer,
+    gauss_2, gauss_4, gauss_6, tao, semiexplicit,
+    dprkn6, dprkn8, dprkn12, dprkn6_controlled, dprkn8_controlled, dprkn12_controlled,
+};
+inline constexpr std::size_t method_kind_count = std::size_t(method_kind::dprkn12_controlled) + 1;
 
 // What a system's equations offer a method.
 struct system_form {
@@ -28,6 +33,8 @@ struct system_form {
     bool negative_potential = false;     // V(q) < 0 everywhere (gravitation): what LogH needs
     bool differentiable_force = false;   // J_F(q) u, analytic or by dual numbers: what force-gradient kicks need
     bool conformal = false;              // dp/dt = F(q, t) - gamma p with dq/dt linear in p: damped tables
+    bool general_hamiltonian = false;    // any H(q, p), separable or not: Gauss-Legendre, Tao, semiexplicit
+    bool quadratic_kinetic = false;      // separable with T quadratic in p (dq/dt linear in p): the RKN pairs
 };
 
 enum class needs {
@@ -38,6 +45,8 @@ enum class needs {
     negative_potential,
     differentiable_force,
     splitting,  // a kick-drift table: a separable Hamiltonian, or a damped, driven one (conformal_splitting.hpp)
+    general_hamiltonian,  // any H(q, p) (general_hamiltonian.hpp), a separable one too
+    quadratic_kinetic,    // a separable Hamiltonian whose T is quadratic in p: q'' = F(q) (rkn_pairs.hpp)
 };
 
 // Why a method that needs `n` cannot run on a system of `form` ("" when it can).
@@ -55,8 +64,11 @@ struct method_kind_entry {
     const char* description = "";    // for listings and error messages
 };
 
+inline constexpr const char* rkn_controlled_not_resumable =
+    "its step-size controller carries the step size and the last error between steps, which a checkpoint does not hold";
+
 // The registry, in the order of method_kind.
-inline constexpr std::array<method_kind_entry, 8> method_kind_entries{{
+inline constexpr std::array<method_kind_entry, method_kind_count> method_kind_entries{{
     {.kind = method_kind::table, .label = "table", .requirement = needs::splitting,
      .description = "a splitting table: the catalog's (sympl tables) or a scene's own [[table]], on a separable "
                     "Hamiltonian or, with exact damped drifts, on a damped, driven system; extrapolated(<symmetric "
@@ -88,10 +100,46 @@ inline constexpr std::array<method_kind_entry, 8> method_kind_entries{{
      .adaptive = true, .physical_time = false, .odeint = true,
      .not_resumable = "it is Boost.Odeint's stepper, whose state a checkpoint does not hold",
      .description = "Boost.Odeint bulirsch_stoer, absolute = relative tolerance"},
+    {.kind = method_kind::gauss_2, .label = "gauss", .scene_name = "gauss_2", .requirement = needs::general_hamiltonian,
+     .description = "implicit Gauss-Legendre collocation, s = 1 (the implicit midpoint rule), order 2: symplectic for "
+                    "any H(q, p), separable or not"},
+    {.kind = method_kind::gauss_4, .label = "gauss", .scene_name = "gauss_4", .requirement = needs::general_hamiltonian,
+     .description = "implicit Gauss-Legendre collocation, s = 2, order 4, any H(q, p)"},
+    {.kind = method_kind::gauss_6, .label = "gauss", .scene_name = "gauss_6", .requirement = needs::general_hamiltonian,
+     .description = "implicit Gauss-Legendre collocation, s = 3, order 6, any H(q, p)"},
+    {.kind = method_kind::tao, .label = "tao", .requirement = needs::general_hamiltonian,
+     .not_resumable = "it carries a second copy of the state between steps, which a checkpoint does not hold",
+     .description = "tao(<table>): Tao's explicit method for any H(q, p) (extended phase space, binding omega = 20), "
+                    "composed by a symmetric composition of leapfrog steps (leapfrog_kdk, yoshida_4, yoshida_6, ...); "
+                    "symplectic in the extended space only"},
+    {.kind = method_kind::semiexplicit, .label = "semiexplicit", .requirement = needs::general_hamiltonian,
+     .description = "semiexplicit(<table>): Jayawardana & Ohsawa's semiexplicit method for any H(q, p), composed "
+                    "by a symmetric composition of leapfrog steps; symplectic and symmetric"},
+    {.kind = method_kind::dprkn6, .label = "rkn_nonsymplectic", .scene_name = "dprkn6",
+     .requirement = needs::quadratic_kinetic,
+     .description = "not symplectic: Dormand-Prince RKN6(4) pair, fixed step (the order-6 result)"},
+    {.kind = method_kind::dprkn8, .label = "rkn_nonsymplectic", .scene_name = "dprkn8",
+     .requirement = needs::quadratic_kinetic,
+     .description = "not symplectic: Dormand-El-Mikkawy-Prince RKN8(6) pair, fixed step"},
+    {.kind = method_kind::dprkn12, .label = "rkn_nonsymplectic", .scene_name = "dprkn12",
+     .requirement = needs::quadratic_kinetic,
+     .description = "not symplectic: Dormand-El-Mikkawy-Prince RKN12(10) pair, fixed step"},
+    {.kind = method_kind::dprkn6_controlled, .label = "rkn_nonsymplectic", .scene_name = "dprkn6_controlled",
+     .adaptive = true, .physical_time = false, .requirement = needs::quadratic_kinetic,
+     .not_resumable = rkn_controlled_not_resumable,
+     .description = "not symplectic: dprkn6 with its step size controlled, absolute = relative tolerance"},
+    {.kind = method_kind::dprkn8_controlled, .label = "rkn_nonsymplectic", .scene_name = "dprkn8_controlled",
+     .adaptive = true, .physical_time = false, .requirement = needs::quadratic_kinetic,
+     .not_resumable = rkn_controlled_not_resumable,
+     .description = "not symplectic: dprkn8 with its step size controlled, absolute = relative tolerance"},
+    {.kind = method_kind::dprkn12_controlled, .label = "rkn_nonsymplectic", .scene_name = "dprkn12_controlled",
+     .adaptive = true, .physical_time = false, .requirement = needs::quadratic_kinetic,
+     .not_resumable = rkn_controlled_not_resumable,
+     .description = "not symplectic: dprkn12 with its step size controlled, absolute = relative tolerance"},
 }};
 
 constexpr const method_kind_entry& entry_of(method_kind kind) { return method_kind_entries[std::size_t(kind)]; }
-const std::array<method_kind_entry, 8>& method_kinds();
+const std::array<method_kind_entry, method_kind_count>& method_kinds();
 
 // A classic stepper of classic_steppers.hpp under its scene name.
 template <template <class, class> class Stepper, needs Needs>
@@ -133,7 +181,7 @@ classic_facts classic_at(std::size_t index);
 struct method_spec {
     std::string name;
     method_kind kind = method_kind::table;
-    std::optional<table> coefficients;  // for kind == table (force-gradient tables too) and logh
+    std::optional<table> coefficients;  // for kind == table (force-gradient tables too), logh, tao and semiexplicit
     std::optional<processed_method> processing = std::nullopt;  // for kind == processed
     int extrapolation_columns = 0;      // extrapolated(<table or logh(table)>, k): k > 0
     bool compensated = false;           // compensated(<table>): Kahan-summed updates
@@ -149,11 +197,14 @@ inline bool steps_in_physical_time(const method_spec& m) { return entry_of(m.kin
 // force-gradient tables and the processed methods.
 std::vector<std::string> method_names_beside_tables();
 
-// The method a scene names: an inline table first, then an Odeint kind, a
-// classic stepper, a catalog table, a force-gradient table, a processed
-// method, and logh(<any of the plain tables>) for the table run in LogH
-// fictitious time, and extrapolated(<table or logh(table)>, k); nullopt when
-// the name is none of these. A malformed extrapolated(...) or logh(...) is an
+// The method a scene names: an inline table first, then a kind that is one
+// method (Odeint, Gauss-Legendre, RKN pairs), a classic stepper, a catalog
+// table, a force-gradient table, a processed method, and logh(<any of the
+// plain tables>) for the table run in LogH fictitious time,
+// extrapolated(<table or logh(table)>, k), tao(<table>) and
+// semiexplicit(<table>) for a symmetric composition of leapfrog steps run on
+// any H(q, p); nullopt when the name is none of these. A malformed
+// extrapolated(...), logh(...), tao(...) or semiexplicit(...) is an
 // invalid_argument that says what is wrong.
 inline constexpr int max_extrapolation_columns = 12;
 std::optional<method_spec> resolve_method(const std::string& name, const std::map<std::string, table>& inline_tables);

@@ -9,6 +9,7 @@
 #include <functional>
 #include <utility>
 
+#include "general_system.hpp"
 #include "run_kinds.hpp"
 #include "timing.hpp"
 
@@ -122,6 +123,7 @@ template <int Dim, class Sys>
 void add_hamiltonian_parts(problem& p, const Sys& sys) {
     using S = state_of<Dim>;
     p.energy = [sys](const std::vector<double>& x) { return energy(sys, from_stacked<phase_space<double>>(x)); };
+    p.reference_method = "sofroniou_spaletta_10, long double";
     p.reference = [sys](double t0, double t_end, double dt, const std::vector<double>& x) {
         using L = phase_space<long double>;
         L y = from_stacked<L>(x);
@@ -150,6 +152,40 @@ void add_hamiltonian_parts(problem& p, const Sys& sys) {
     };
 }
 
+// What a general H(q, p) offers the program: its energy and a long-double
+// reference by Gauss-Legendre of order 6 (symplectic for any H; no ensembles
+// or sections, which run splitting tables).
+template <class Sys>
+void add_general_parts(problem& p, const Sys& sys) {
+    p.energy = [sys](const std::vector<double>& x) { return energy(sys, from_stacked<phase_space<double>>(x)); };
+    p.reference_method = "gauss_6, long double";
+    p.reference = [sys](double t0, double t_end, double dt, const std::vector<double>& x) {
+        using L = phase_space<long double>;
+        L y = from_stacked<L>(x);
+        gauss_collocation_stepper<Sys, L> gauss(sys, 3);
+        integrate_until(gauss, y, (long double)t0, (long double)t_end, (long double)dt);
+        return to_vector(y);
+    };
+}
+
+// Equations of motion only: an RK4 reference in double.
+template <class Sys>
+void add_equations_parts(problem& p, const Sys& sys) {
+    p.reference_method = "rk4";
+    p.reference = [sys](double t0, double t_end, double dt, const std::vector<double>& x) {
+        using State = phase_space<double>;
+        State y = from_stacked<State>(x);
+        auto s4 = make_classic<rk4, State>(sys);
+        integrate_until(s4, y, t0, t_end, dt);
+        return to_vector(y);
+    };
+}
+
+template <class Sys>
+inline constexpr bool is_general_system = false;
+template <class H>
+inline constexpr bool is_general_system<general_system<H>> = true;
+
 }  // namespace detail
 
 // A 1-D coordinate or momentum, for the default states of 1-D systems.
@@ -164,30 +200,31 @@ std::function<std::vector<double>(double)> exact_flow(H h, X x0) {
 // A system of hamiltonians/ as the program's problem: its default state x0
 // and, when it has one, its exact solution from x0.
 // Dim: the degrees of freedom when fixed (small systems), Eigen::Dynamic otherwise.
+// A general H(q, p) that does not split runs as general_system<H>.
 template <int Dim = Eigen::Dynamic, class Sys>
 problem model(Sys sys, std::vector<double> x0, std::function<std::vector<double>(double)> exact = nullptr) {
-    if (Dim != Eigen::Dynamic && x0.size() != std::size_t(2 * Dim))
-        throw invalid_argument("model: a state of " + std::to_string(x0.size()) + " numbers for " + std::to_string(Dim) +
-                               " degrees of freedom");
-    problem p;
-    p.form = detail::form_of<Sys>();
-    p.hamiltonian = p.form.separable_hamiltonian;
-    p.degrees_of_freedom = x0.size() / 2;
-    p.x0 = std::move(x0);
-    p.exact = std::move(exact);
-    if constexpr (separable_hamiltonian<Sys, phase_space<double>::vector>) {
-        detail::add_hamiltonian_parts<Dim>(p, sys);
+    using V = phase_space<double>::vector;
+    if constexpr (general_hamiltonian<Sys, V> && !separable_hamiltonian<Sys, V> && !detail::is_general_system<Sys>) {
+        return model<Dim>(general_system<Sys>{std::move(sys)}, std::move(x0), std::move(exact));
     } else {
-        p.reference = [sys](double t0, double t_end, double dt, const std::vector<double>& x) {
-            using State = phase_space<double>;
-            State y = from_stacked<State>(x);
-            auto s4 = make_classic<rk4, State>(sys);
-            integrate_until(s4, y, t0, t_end, dt);
-            return detail::to_vector(y);
-        };
+        if (Dim != Eigen::Dynamic && x0.size() != std::size_t(2 * Dim))
+            throw invalid_argument("model: a state of " + std::to_string(x0.size()) + " numbers for " +
+                                   std::to_string(Dim) + " degrees of freedom");
+        problem p;
+        p.form = detail::form_of<Sys>();
+        p.hamiltonian = p.form.general_hamiltonian;  // separable or not
+        p.degrees_of_freedom = x0.size() / 2;
+        p.x0 = std::move(x0);
+        p.exact = std::move(exact);
+        if constexpr (separable_hamiltonian<Sys, V>)
+            detail::add_hamiltonian_parts<Dim>(p, sys);
+        else if constexpr (general_hamiltonian<Sys, V>)
+            detail::add_general_parts(p, sys);
+        else
+            detail::add_equations_parts(p, sys);
+        p.run = detail::runner<Sys, Dim>(sys, p.energy);
+        return p;
     }
-    p.run = detail::runner<Sys, Dim>(sys, p.energy);
-    return p;
 }
 
 }  // namespace sympl::app

@@ -102,7 +102,9 @@ struct problem {
     // from x0, as stacked states (separable Hamiltonians only).
     std::function<std::vector<std::vector<double>>(const table&, double dt, std::size_t steps, const std::vector<double>& x0)>
         section;
-    // A reference at t_end from Sofroniou-Spaletta 10 in long double with step dt.
+    // A reference at t_end with step dt: Sofroniou-Spaletta 10 in long double
+    // (a separable H), Gauss-Legendre 6 in long double (any other H), RK4.
+    std::string reference_method;  // which, as the report names it
     std::function<std::vector<double>(double t0, double t_end, double dt, const std::vector<double>& x0)> reference;
 };
 

@@ -16,8 +16,7 @@ namespace fs = std::filesystem;
 reference_state make_reference(const scene& s, const problem& p, const run_plan& plan, const fs::path& cache) {
     if (p.exact) return {p.exact(s.t_end - s.t0), 0.0, "exact", {}};
     const double dt = plan.reference_dt, finest_dt = plan.finest_dt;
-    const std::string kind =
-        p.hamiltonian ? "sofroniou_spaletta_10, long double, dt = " + format_number(dt) : "rk4, dt = " + format_number(dt);
+    const std::string kind = p.reference_method + ", dt = " + format_number(dt);
     // Cached on disk under a key of everything the reference depends on.
     std::ostringstream key;
     key << std::setprecision(17) << s.system << ';' << s.t0 << ';' << s.t_end << ';' << dt;

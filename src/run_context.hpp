@@ -36,14 +36,18 @@ std::vector<double> to_vector(const X& x) {
 
 // Whether a system of type Sys meets a requirement: decided by the library's
 // concepts, at compile time; form_of<Sys>() is the registry's copy.
-// (V < 0 is a property of the system's values, given by its registry entry.)
+// (V < 0 and a kinetic energy quadratic in p are properties of the system's
+// values, given by its registry entry; here they stand for "separable".)
 template <needs N, class Sys>
 constexpr bool meets() {
     using State = phase_space<double>;
     using E = decltype(equations_of<State>(std::declval<Sys>()));
     if constexpr (N == needs::any) return true;
-    else if constexpr (N == needs::separable_hamiltonian || N == needs::negative_potential)
+    else if constexpr (N == needs::separable_hamiltonian || N == needs::negative_potential ||
+                       N == needs::quadratic_kinetic)
         return separable_hamiltonian<Sys, State::vector>;
+    else if constexpr (N == needs::general_hamiltonian)
+        return general_hamiltonian<Sys, State::vector> || separable_hamiltonian<Sys, State::vector>;
     else if constexpr (N == needs::differentiable_force) {
         if constexpr (separable_hamiltonian<Sys, State::vector>) return differentiable_force<Sys, State::vector>;
         else return false;
@@ -59,7 +63,9 @@ system_form form_of() {
             .newtonian = meets<needs::newtonian, Sys>(),
             .damped_split = meets<needs::damped_split, Sys>(),
             .differentiable_force = meets<needs::differentiable_force, Sys>(),
-            .conformal = conformal_system<Sys, phase_space<double>::vector>};
+            .conformal = conformal_system<Sys, phase_space<double>::vector>,
+            .general_hamiltonian = meets<needs::general_hamiltonian, Sys>(),
+            .quadratic_kinetic = meets<needs::quadratic_kinetic, Sys>()};
 }
 
 template <class Sys>

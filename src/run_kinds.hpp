@@ -5,12 +5,15 @@
 // instantiated for it (the registry's requirement, checked by the library's
 // concepts at compile time). Included by the systems' translation units
 // (systems/*.cpp) through model.hpp only. The Odeint kinds are in
-// run_odeint.hpp, what all kinds share in run_context.hpp.
+// run_odeint.hpp, those for any H(q, p) in run_general.hpp, the RKN pairs in
+// run_rkn.hpp, what all kinds share in run_context.hpp.
 #include <cstddef>
 #include <utility>
 
 #include "run_context.hpp"
+#include "run_general.hpp"
 #include "run_odeint.hpp"
+#include "run_rkn.hpp"
 
 namespace sympl::app::detail {
 
@@ -106,7 +109,9 @@ bool meets_at_run_time(needs n) {
     constexpr std::array answers{meets<needs::any, Sys>(),          meets<needs::separable_hamiltonian, Sys>(),
                                  meets<needs::newtonian, Sys>(),    meets<needs::damped_split, Sys>(),
                                  meets<needs::negative_potential, Sys>(), meets<needs::differentiable_force, Sys>(),
-                                 meets<needs::splitting, Sys>()};
+                                 meets<needs::splitting, Sys>(),    meets<needs::general_hamiltonian, Sys>(),
+                                 meets<needs::quadratic_kinetic, Sys>()};
+    static_assert(answers.size() == std::size_t(needs::quadratic_kinetic) + 1);
     return answers[std::size_t(n)];
 }
 

@@ -34,7 +34,8 @@ scene_method method_by_name(const reader& r, const toml::node& n, const std::map
     }
     if (!m)
         r.fail(*name_node, "unknown method '" + name + "'; expected a catalog name (sympl tables), an inline [[table]], "
-                           "logh(<table>), extrapolated(<table>, k), compensated(<table>), or one of: " + join(method_names_beside_tables()));
+                           "logh(<table>), extrapolated(<table>, k), compensated(<table>), tao(<table>), "
+                           "semiexplicit(<table>), or one of: " + join(method_names_beside_tables()));
     scene_method sm{*m, {}, {}};
     if (t && t->get("dt")) sm.dt = r.sweep(*t->get("dt"), "dt");
     if (t && t->get("tolerances")) sm.tolerances = r.sweep(*t->get("tolerances"), "tolerances");

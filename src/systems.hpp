@@ -66,6 +66,7 @@ struct system_entry {
     bool exact = false;  // an exact solution from the default state (and parameters, see description)
     std::function<problem(const parameter_values&)> build;  // every parameter present and valid
     bool negative_potential = false;  // V(q) < 0 everywhere (gravitation): LogH applies
+    bool kinetic_not_quadratic = false;  // a separable H whose T is not quadratic in p: no RKN pairs
 
     const parameter* find(const std::string& parameter_name) const;
 };

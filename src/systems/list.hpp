@@ -21,6 +21,9 @@ system_entry morse_entry();
 system_entry double_well_entry();
 system_entry toda_entry();
 system_entry damped_oscillator_entry();
+system_entry charged_particle_entry();
+system_entry double_pendulum_entry();
+system_entry product_hamiltonian_entry();
 
 inline std::vector<system_entry> every_system_entry() {
     return {
@@ -38,6 +41,9 @@ inline std::vector<system_entry> every_system_entry() {
         double_well_entry(),
         toda_entry(),
         damped_oscillator_entry(),
+        charged_particle_entry(),
+        double_pendulum_entry(),
+        product_hamiltonian_entry(),
     };
 }
 

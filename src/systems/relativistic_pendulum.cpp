@@ -14,6 +14,7 @@ system_entry relativistic_pendulum_entry() {
         .build = [](const parameter_values& v) {
             return model<1>(hamiltonians::relativistic_pendulum{v.at("mass"), v.at("c"), v.at("k")}, {1.2, 0.9});
         },
+        .kinetic_not_quadratic = true,
     };
 }
 

@@ -254,7 +254,7 @@ TEST_CASE("wisdom_holman: the outer solar system's energy error stays bounded ov
     CHECK(halves[1] < 1.5 * halves[0]);
 }
 
-TEST_CASE("wisdom_holman: steps(n) equals n calls of step() to rounding; counters; the drivers") {
+TEST_CASE("wisdom_holman: steps(n) equals n calls of step() to rounding, counters and the drivers") {
     const planetary_system s = two_planets(1e-3);
     const double h = two_pi / 50;
     for (const char* name : {"leapfrog_kdk", "leapfrog_dkd", "saba_2", "blanes_2013_aba_8_6_4"}) {

@@ -102,3 +102,57 @@ TEST_CASE("method kinds: extrapolated(<table or logh(table)>, k), and what is wr
     CHECK_THROWS_WITH_AS(resolve_method("extrapolated(mine, 3)", mine), doctest::Contains("claims order 0"),
                          sympl::invalid_argument);
 }
+
+TEST_CASE("method kinds: Gauss-Legendre, tao(<table>), semiexplicit(<table>) and the RKN pairs") {
+    for (const char* name : {"gauss_2", "gauss_4", "gauss_6"}) {
+        CHECK(resolve_method(name, {}));
+        CHECK(requirement_of(*resolve_method(name, {})) == needs::general_hamiltonian);
+        CHECK(why_not_resumable(*resolve_method(name, {})).empty());
+    }
+    const auto tao = resolve_method("tao(yoshida_6)", {});
+    REQUIRE(tao);
+    CHECK(tao->kind == method_kind::tao);
+    CHECK(tao->coefficients->name() == "yoshida_6");
+    CHECK(why_not_resumable(*tao).find("second copy") != std::string::npos);
+    const auto semi = resolve_method("semiexplicit( leapfrog_kdk )", {});
+    REQUIRE(semi);
+    CHECK(semi->kind == method_kind::semiexplicit);
+    CHECK(why_not_resumable(*semi).empty());
+    CHECK_THROWS_WITH_AS(resolve_method("tao(ruth_3)", {}),
+                         doctest::Contains("method 'tao(ruth_3)': table 'ruth_3' is not symmetric; expected a symmetric "
+                                           "composition of leapfrog steps"),
+                         sympl::invalid_argument);
+    CHECK_THROWS_WITH_AS(resolve_method("semiexplicit(blanes_moan_s6)", {}),
+                         doctest::Contains("method 'semiexplicit(blanes_moan_s6)': table 'blanes_moan_s6'"),
+                         sympl::invalid_argument);
+    CHECK_THROWS_WITH_AS(resolve_method("tao(rk4)", {}), doctest::Contains("'rk4' is not a table"), sympl::invalid_argument);
+    CHECK_THROWS_WITH_AS(resolve_method("tao(chin_4a)", {}), doctest::Contains("force-gradient"), sympl::invalid_argument);
+    for (const char* name : {"dprkn6", "dprkn8", "dprkn12"}) {
+        CHECK_FALSE(entry_of(resolve_method(name, {})->kind).adaptive);
+        CHECK(why_not_resumable(*resolve_method(name, {})).empty());
+        const auto controlled = resolve_method(std::string(name) + "_controlled", {});
+        REQUIRE(controlled);
+        CHECK(entry_of(controlled->kind).adaptive);
+        CHECK(std::string(entry_of(controlled->kind).label) == "rkn_nonsymplectic");
+        CHECK(why_not_resumable(*controlled).find("step size") != std::string::npos);
+    }
+    // A general H(q, p): the tables are refused with what to use instead; a system
+    // with no Hamiltonian at all refuses Gauss-Legendre too.
+    system_form general;
+    general.general_hamiltonian = true;
+    CHECK(why_not(*resolve_method("yoshida_4", {}), general) ==
+          "method 'yoshida_4' needs a separable Hamiltonian H = T(p) + V(q) or a damped, driven one (dp/dt = F(q, t) - "
+          "gamma p); this system's H(q, p) does not split (use gauss_4, gauss_6, semiexplicit(<table>) or tao(<table>))");
+    CHECK(why_not(*resolve_method("blanes_2001_p6", {}), general).find("H(q, p) does not split") != std::string::npos);
+    CHECK(why_not(*resolve_method("logh(leapfrog_dkd)", {}), general).find("does not split") != std::string::npos);
+    CHECK(why_not(*resolve_method("dprkn8", {}), general).find("does not split") != std::string::npos);
+    CHECK(why_not(*tao, general).empty());
+    CHECK(why_not(*resolve_method("gauss_4", {}), general).empty());
+    CHECK(why_not(*resolve_method("odeint_rk4", {}), general).empty());
+    CHECK(why_not(*resolve_method("gauss_4", {}), system_form{false, true, true}) ==
+          "method 'gauss_4' needs a Hamiltonian H(q, p); this system is not Hamiltonian (use a classic method)");
+    system_form relativistic{true, false, false};  // separable, T not quadratic
+    CHECK(why_not(*resolve_method("dprkn6_controlled", {}), relativistic).find("quadratic in p") != std::string::npos);
+    relativistic.quadratic_kinetic = true;
+    CHECK(why_not(*resolve_method("dprkn6_controlled", {}), relativistic).empty());
+}

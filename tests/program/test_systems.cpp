@@ -22,15 +22,17 @@ std::vector<method_spec> every_method() {
     all.push_back(*resolve_method("logh(leapfrog_dkd)", {}));
     all.push_back(*resolve_method("extrapolated(leapfrog_kdk, 3)", {}));
     all.push_back(*resolve_method("extrapolated(logh(leapfrog_dkd), 3)", {}));
+    all.push_back(*resolve_method("tao(yoshida_4)", {}));
+    all.push_back(*resolve_method("semiexplicit(leapfrog_kdk)", {}));
     return all;
 }
 }  // namespace
 
 TEST_CASE("systems: every system runs every method the registry says it can, and refuses every other") {
     const auto methods = every_method();
-    // 10 classic names, 4 Odeint kinds, the force-gradient tables and processed methods, a catalog
-    // and an inline table, a logh, two extrapolated
-    CHECK(methods.size() == 19 + sympl::force_gradient_catalog().size() + sympl::processed_catalog().size());
+    // 10 classic names, 4 Odeint kinds, 3 Gauss-Legendre, 6 RKN pairs, the force-gradient tables and
+    // processed methods, a catalog and an inline table, a logh, two extrapolated, a tao and a semiexplicit
+    CHECK(methods.size() == 30 + sympl::force_gradient_catalog().size() + sympl::processed_catalog().size());
     for (const system_entry& entry : systems()) {
         const problem p = make_problem(entry.name, {}, {}, {}, "test");
         for (const method_spec& m : methods) {
@@ -47,6 +49,13 @@ TEST_CASE("systems: every system runs every method the registry says it can, and
             try {
                 const run_result r = p.run(m, rq, 0.0, 0.01, p.x0);
                 ran = true;
+                // Tao's binding rotates the copies' q-differences into p: where the momenta are
+                // 1e-11 of the positions (the outer solar system's planets of mass 1e-8), the
+                // copies come apart at once, and the run says so.
+                if (m.kind == method_kind::tao && entry.name == "outer_solar_system") {
+                    CHECK(r.failure.find("the copies came apart") != std::string::npos);
+                    continue;
+                }
                 CHECK(r.stable);
                 const bool fixed_step = steps_in_physical_time(m);
                 CHECK(r.steps >= (fixed_step ? 10u : 1u));  // logh: dt is a fictitious step
@@ -55,12 +64,9 @@ TEST_CASE("systems: every system runs every method the registry says it can, and
                 refusal = e.what();
             }
             CHECK(ran == why.empty());
-            // The same words as the registry's; LogH on a system with V >= 0 is refused at its first
-            // sub-step, where T + p_t = -V or V itself is not of the sign it needs.
-            if (!ran && m.kind == method_kind::logh && p.form.separable_hamiltonian)
-                CHECK((refusal.find("logh: V(q) = ") == 0 || refusal.find("logh: T(p) + p_t = ") == 0));
-            else if (!ran)
-                CHECK(refusal == why);
+            // The same words as the registry's, also where the registry's values (V < 0, a
+            // quadratic T) decide what the system's type cannot.
+            if (!ran) CHECK(refusal == why);
         }
     }
 }

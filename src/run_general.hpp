@@ -1,0 +1,60 @@
+#pragma once
+// The kinds for any Hamiltonian H(q, p), separable or not (run_kind<gauss_*>,
+// <tao>, <semiexplicit>): the implicit Gauss-Legendre collocation
+// (gauss_collocation.hpp) and the two extended-phase-space methods
+// (extended_phase_space.hpp), composed by the method's table. A separable
+// Hamiltonian runs them too: Gauss-Legendre takes it as it is, the others as
+// separable_as_general (dH/dq = -F(q), dH/dp = dT/dp).
+#include <utility>
+
+#include "run_context.hpp"
+
+namespace sympl::app::detail {
+
+// The system as the extended-phase-space steppers take it.
+template <class Sys>
+auto as_general(const Sys& sys) {
+    if constexpr (general_hamiltonian<Sys, phase_space<double>::vector>)
+        return sys;
+    else
+        return separable_as_general<Sys>{sys};
+}
+
+// Gauss-Legendre with `Stages` stages, order 2 Stages: nothing is carried
+// between steps, so a checkpoint resumes it bit for bit.
+template <int Stages>
+struct gauss_run {
+    template <class C>
+    static steps_and_forces run(const C& c) {
+        return c.drive(gauss_collocation_stepper<typename C::system, typename C::State>(c.sys, Stages));
+    }
+};
+
+template <>
+struct run_kind<method_kind::gauss_2> : gauss_run<1> {};
+template <>
+struct run_kind<method_kind::gauss_4> : gauss_run<2> {};
+template <>
+struct run_kind<method_kind::gauss_6> : gauss_run<3> {};
+
+// Tao (2016): its second copy is carried from step to step (not resumable).
+template <>
+struct run_kind<method_kind::tao> {
+    template <class C>
+    static steps_and_forces run(const C& c) {
+        auto h = as_general(c.sys);
+        return c.template drive<false>(tao_stepper<decltype(h), typename C::State>(std::move(h), *c.m.coefficients));
+    }
+};
+
+// Jayawardana & Ohsawa (2023): both copies start at the state every step.
+template <>
+struct run_kind<method_kind::semiexplicit> {
+    template <class C>
+    static steps_and_forces run(const C& c) {
+        auto h = as_general(c.sys);
+        return c.drive(semiexplicit_stepper<decltype(h), typename C::State>(std::move(h), *c.m.coefficients));
+    }
+};
+
+}  // namespace sympl::app::detail
