@@ -9,10 +9,16 @@
 // several). Contenders, side by side in one process on the same force code:
 // sympl's catalog tables, force-gradient methods (J_F u analytic: fpu_beta's
 // and henon_heiles's force_derivative) and processed methods (processing.hpp;
-// the processor applied at each look), and Boost.Odeint's runge_kutta4,
+// the processor applied at each look), sympl's embedded RKN pairs dprkn6,
+// dprkn8, dprkn12 (rkn_pairs.hpp; not symplectic), each with fixed steps
+// (step() per step, searched over dt) and controlled (integrate_controlled
+// with absolute = relative tolerance, searched over it, looked at as Odeint's
+// controlled steppers), and Boost.Odeint's runge_kutta4,
 // cash_karp54, dopri5 (dense output), fehlberg78, bulirsch_stoer (controlled and
 // dense output), adams_bashforth_moulton<8> and its two symplectic RKN steppers.
-// Prints times and each one's ratio to the best Odeint method.
+// Prints times and each one's ratio to the best Odeint method, then the best of
+// each kind: "sympl" (symplectic: tables, force-gradient, processed), "sympl-ns"
+// (sympl, not symplectic: the RKN pairs) and "odeint".
 //   bench_accuracy [--quick] [--target 1e-10] [--large]
 // Problems: Henon-Heiles at E = 1/8 (x0 from henon_heiles::initial_state) over
 // t = 1000; FPU-beta chains (beta = 1, fixed ends) of N = 1000 over t = 100
@@ -46,9 +52,12 @@ namespace {
 
 constexpr std::size_t looks = 100;  // about this many energy looks a run
 
+enum class kind { symplectic, pair, odeint };  // sympl symplectic, sympl non-symplectic (RKN pairs), Odeint
+const char* kind_name(kind k) { return k == kind::symplectic ? "sympl" : k == kind::pair ? "sympl-ns" : "odeint"; }
+
 struct contender {
     std::string name;
-    bool odeint;
+    kind of;
     double loose, tight;                // the range searched (a step or a tolerance)
     std::function<double(double)> run;  // max relative energy error for a parameter
 };
@@ -96,13 +105,41 @@ std::vector<contender> contenders(const problem<H, X, Y>& pr) {
                           "okunbor_skeel_6", "blanes_casas_escorihuela_a18", "blanes_casas_escorihuela_b17",
                           "blanes_casas_escorihuela_b19", "kahan_li_8", "suzuki_umeno_8", "sofroniou_spaletta_10"}) {
         const sympl::table m = sympl::method(t);
-        all.push_back({t, false, 2.0, 1e-4, sympl_run([&pr, m] { return sympl::make_stepper<X>(pr.h, m); })});
+        all.push_back({t, kind::symplectic, 2.0, 1e-4, sympl_run([&pr, m] { return sympl::make_stepper<X>(pr.h, m); })});
     }
     for (const sympl::table& m : sympl::force_gradient_catalog())
-        all.push_back({m.name(), false, 2.0, 1e-4, sympl_run([&pr, m] { return sympl::make_stepper<X>(pr.h, m); })});
+        all.push_back({m.name(), kind::symplectic, 2.0, 1e-4, sympl_run([&pr, m] { return sympl::make_stepper<X>(pr.h, m); })});
     for (const sympl::processed_method& m : sympl::processed_catalog())
-        all.push_back({m.name, false, 2.0, 1e-4,
+        all.push_back({m.name, kind::symplectic, 2.0, 1e-4,
                        sympl_run([&pr, m] { return sympl::processed_stepper<H, X>(pr.h, m); })});
+    // The embedded RKN pairs (not symplectic): fixed steps like the tables, and
+    // controlled, looked at the end of the first step past each of 101 even times.
+    const auto add_pair = [&]<class P>() {
+        all.push_back({std::string(P::name) + "_fixed", kind::pair, 2.0, 1e-4,
+                       sympl_run([&pr] { return sympl::make_rkn_stepper<P, X>(pr.h); })});
+        all.push_back({std::string(P::name) + "_controlled", kind::pair, 1e-2, 1e-16,
+                       [&pr, relative, t_end](double tol) {
+                           auto s = sympl::make_rkn_stepper<P, X>(pr.h);
+                           X x = pr.x0;
+                           double worst = 0, next = 0;
+                           sympl::rkn_control control;
+                           control.absolute_tolerance = control.relative_tolerance = tol;
+                           control.dt_initial = t_end / 1e4;  // as Odeint's
+                           try {
+                               sympl::integrate_controlled(s, x, 0.0, t_end, control, [&](const X& y, double t) {
+                                   if (t < next && t < t_end) return;
+                                   worst = std::max(worst, relative(sympl::energy(pr.h, y)));
+                                   while (next <= t) next += t_end / looks;
+                               });
+                           } catch (const std::exception&) {  // step size underflow at too tight a tolerance
+                               return 1e300;
+                           }
+                           return worst;
+                       }});
+    };
+    add_pair.template operator()<sympl::dprkn6>();
+    add_pair.template operator()<sympl::dprkn8>();
+    add_pair.template operator()<sympl::dprkn12>();
 
     const Y y0 = pr.to_y(pr.x0);
     const auto system = [&pr](const Y& y, Y& dy, double) { pr.rhs(y, dy); };
@@ -164,20 +201,20 @@ std::vector<contender> contenders(const problem<H, X, Y>& pr) {
             return worst;
         };
     };
-    all.push_back({"odeint_rk4", true, 1.0, 1e-5, fixed([] { return odeint::runge_kutta4<Y>(); })});
-    all.push_back({"odeint_abm8", true, 1.0, 1e-5, fixed([] { return odeint::adams_bashforth_moulton<8, Y>(); })});
-    all.push_back({"odeint_cash_karp54", true, 1e-2, 1e-16, controlled([](double tol) {
+    all.push_back({"odeint_rk4", kind::odeint, 1.0, 1e-5, fixed([] { return odeint::runge_kutta4<Y>(); })});
+    all.push_back({"odeint_abm8", kind::odeint, 1.0, 1e-5, fixed([] { return odeint::adams_bashforth_moulton<8, Y>(); })});
+    all.push_back({"odeint_cash_karp54", kind::odeint, 1e-2, 1e-16, controlled([](double tol) {
                        return odeint::make_controlled(tol, tol, odeint::runge_kutta_cash_karp54<Y>());
                    })});
-    all.push_back({"odeint_dopri5_dense", true, 1e-2, 1e-16, at_times([](double tol) {
+    all.push_back({"odeint_dopri5_dense", kind::odeint, 1e-2, 1e-16, at_times([](double tol) {
                        return odeint::make_dense_output(tol, tol, odeint::runge_kutta_dopri5<Y>());
                    })});
-    all.push_back({"odeint_fehlberg78", true, 1e-2, 1e-16, controlled([](double tol) {
+    all.push_back({"odeint_fehlberg78", kind::odeint, 1e-2, 1e-16, controlled([](double tol) {
                        return odeint::make_controlled(tol, tol, odeint::runge_kutta_fehlberg78<Y>());
                    })});
-    all.push_back({"odeint_bulirsch_stoer", true, 1e-2, 1e-16,
+    all.push_back({"odeint_bulirsch_stoer", kind::odeint, 1e-2, 1e-16,
                    controlled([](double tol) { return odeint::bulirsch_stoer<Y>(tol, tol); })});
-    all.push_back({"odeint_bulirsch_stoer_dense", true, 1e-2, 1e-16,
+    all.push_back({"odeint_bulirsch_stoer_dense", kind::odeint, 1e-2, 1e-16,
                    at_times([](double tol) { return odeint::bulirsch_stoer_dense_out<Y>(tol, tol); })});
     return all;
 }
@@ -204,42 +241,46 @@ void add_odeint_rkn(std::vector<contender>& all, const problem<H, X, Y>& pr, std
             return worst;
         };
     };
-    all.push_back({"odeint_rkn_sb3a_mclachlan", true, 1.0, 1e-5,
+    all.push_back({"odeint_rkn_sb3a_mclachlan", kind::odeint, 1.0, 1e-5,
                    make_run([] { return odeint::symplectic_rkn_sb3a_mclachlan<Q>(); })});
 }
 
 void report(const std::string& title, const std::vector<contender>& all, double target, int repeats) {
-    std::printf("\n%s: time to max relative energy error <= %g (~100 looks); Release -O3 -march=native\n", title.c_str(),
+    std::printf("\n%s: time to max relative energy error <= %g (~100 looks); -O3 -march=native\n", title.c_str(),
                 target);
-    std::printf("%-30s %12s %10s %12s %14s\n", "method", "dt/tol", "error", "time [ms]", "best Odeint /");
+    std::printf("%-30s %-9s %12s %10s %12s %14s\n", "method", "kind", "dt/tol", "error", "time [ms]", "best Odeint /");
     struct result {
         std::string name;
         double parameter, error, seconds;
-        bool odeint;
+        kind of;
     };
     std::vector<result> results;
     for (const contender& c : all) {
         const std::optional<double> found = sympl::bench::loosest_meeting(c.run, c.loose, c.tight, target, 28);
         if (!found) {
-            std::printf("%-30s %12s\n", c.name.c_str(), "not reached");
+            std::printf("%-30s %-9s %12s\n", c.name.c_str(), kind_name(c.of), "not reached");
             continue;
         }
         const double p = *found;
         double error = 0;
         const double seconds = sympl::bench::seconds_of([&] { error = c.run(p); }, repeats, 0.05);
-        results.push_back({c.name, p, error, seconds, c.odeint});
+        results.push_back({c.name, p, error, seconds, c.of});
     }
-    double best_odeint = 1e300, best_sympl = 1e300;
-    std::string odeint_name, sympl_name;
+    std::array<double, 3> best{1e300, 1e300, 1e300};
+    std::array<std::string, 3> best_name{"none", "none", "none"};
     for (const result& r : results) {
-        double& best = r.odeint ? best_odeint : best_sympl;
-        if (r.seconds < best) best = r.seconds, (r.odeint ? odeint_name : sympl_name) = r.name;
+        const auto k = static_cast<std::size_t>(r.of);
+        if (r.seconds < best[k]) best[k] = r.seconds, best_name[k] = r.name;
     }
+    const double best_odeint = best[static_cast<std::size_t>(kind::odeint)];
     for (const result& r : results)
-        std::printf("%-30s %12.4g %10.3g %12.4g %13.2fx\n", r.name.c_str(), r.parameter, r.error, r.seconds * 1e3,
-                    best_odeint / r.seconds);
-    std::printf("best sympl %s %.4g ms, best Odeint %s %.4g ms: sympl %.2fx faster\n", sympl_name.c_str(),
-                best_sympl * 1e3, odeint_name.c_str(), best_odeint * 1e3, best_odeint / best_sympl);
+        std::printf("%-30s %-9s %12.4g %10.3g %12.4g %13.2fx\n", r.name.c_str(), kind_name(r.of), r.parameter, r.error,
+                    r.seconds * 1e3, best_odeint / r.seconds);
+    for (const kind k : {kind::symplectic, kind::pair, kind::odeint}) {
+        const auto i = static_cast<std::size_t>(k);
+        std::printf("best %-8s %-30s %10.4g ms  (best Odeint / it = %.2fx)\n", kind_name(k), best_name[i].c_str(),
+                    best[i] * 1e3, best_odeint / best[i]);
+    }
 }
 
 using HH = sympl::hamiltonians::henon_heiles;
