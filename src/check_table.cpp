@@ -17,12 +17,6 @@
 
 namespace sympl::app {
 
-namespace {
-
-std::vector<double> as_doubles(const std::vector<coefficient>& c) { return {c.begin(), c.end()}; }
-
-}  // namespace
-
 // The exact order from the BCH series to degree 11 certifies orders up to 10.
 constexpr int algebraic_degree = 11;
 

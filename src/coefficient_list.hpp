@@ -16,4 +16,7 @@ inline constexpr std::size_t max_check_table_stages = 256;
 
 std::vector<coefficient> parse_coefficient_list(const std::string& text, const std::string& option);
 
+// Coefficients as JSON and tables print them (double precision).
+inline std::vector<double> as_doubles(const std::vector<coefficient>& c) { return {c.begin(), c.end()}; }
+
 }  // namespace sympl::app

@@ -10,17 +10,12 @@
 #include <sympl/sympl.hpp>
 #include <sympl/analysis/table_order.hpp>
 
+#include "coefficient_list.hpp"
 #include "format.hpp"
 #include "method_kinds.hpp"
 #include "systems.hpp"
 
 namespace sympl::app {
-
-namespace {
-
-std::vector<double> as_doubles(const std::vector<coefficient>& c) { return {c.begin(), c.end()}; }
-
-}  // namespace
 
 // The registries: systems (with parameters) and method kinds.
 void print_systems(bool json) {

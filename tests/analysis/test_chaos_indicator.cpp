@@ -11,6 +11,8 @@
 #include <sympl/hamiltonians/pendulum.hpp>
 #include <sympl/sympl.hpp>
 
+namespace test_analysis_test_chaos_indicator {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl;
 using hh = hamiltonians::henon_heiles;
 
@@ -55,3 +57,5 @@ TEST_CASE("chaos_indicator: MEGNO grows linearly on a chaotic Henon-Heiles orbit
     CHECK(y1 > 4);
     CHECK(y2 > 1.5 * y1);  // linear growth doubles it; regular orbits stay at 2
 }
+
+}  // namespace test_analysis_test_chaos_indicator

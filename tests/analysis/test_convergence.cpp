@@ -7,6 +7,8 @@
 #include <sympl/sympl.hpp>
 #include <sympl/analysis/table_order.hpp>
 
+namespace test_analysis_test_convergence {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl;
 
 TEST_CASE("measure_order sees a kick/drift swap that the harmonic oscillator cannot") {
@@ -72,3 +74,5 @@ TEST_CASE("measure_order reads a 17-digit table's order above the rounding of it
     CHECK(raw.rounding_level > 0);
     CHECK(std::fabs(raw.slopes.back().slope - 2) <= 0.15);
 }
+
+}  // namespace test_analysis_test_convergence

@@ -13,6 +13,8 @@
 #include <sympl/hamiltonians/harmonic_oscillator.hpp>
 #include <sympl/hamiltonians/kepler.hpp>
 
+namespace test_analysis_test_events {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl;
 
 namespace {
@@ -256,3 +258,5 @@ TEST_CASE("events: bad events and options are refused, naming the value") {
     CHECK_THROWS_WITH_AS(integrate_events(s, x, 0.0, 1.0, 0.1, {nan_g}), doctest::Contains("event 0's g = nan at t = 0.6"),
                          invalid_argument);
 }
+
+}  // namespace test_analysis_test_events

@@ -8,6 +8,8 @@
 #include <sympl/methods/catalog.hpp>
 #include <sympl/analysis/order_conditions.hpp>
 
+namespace test_analysis_test_order_conditions {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl;
 
 TEST_CASE("order_conditions: the free Lie algebra and the Nystrom ideal have the known dimensions") {
@@ -116,3 +118,5 @@ TEST_CASE("order_conditions: a processed method's kernel has exactly its effecti
     CHECK(effective_order(method("yoshida_4").substeps(), 5, kinetic_requirement::any) >= 4);
     CHECK(effective_order(method("leapfrog_kdk").substeps(), 5, kinetic_requirement::any) == 2);
 }
+
+}  // namespace test_analysis_test_order_conditions

@@ -14,6 +14,8 @@
 #include <sympl/hamiltonians/pendulum.hpp>
 #include <sympl/hamiltonians/two_particle_spring.hpp>
 
+namespace test_analysis_test_phase_space_measures {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl;
 
 namespace {
@@ -161,3 +163,5 @@ TEST_CASE("phase_space_measures: bad input is named") {
     const auto circle = [](double s) { return State(V1(std::cos(s)), V1(std::sin(s))); };
     CHECK_THROWS_WITH_AS(carry_loop(circle, [](State&) {}, loop_options{}), doctest::Contains("max_gap = 0"), invalid_argument);
 }
+
+}  // namespace test_analysis_test_phase_space_measures

@@ -7,6 +7,8 @@
 #include <sympl/methods/catalog.hpp>
 #include <sympl/analysis/table_order.hpp>
 
+namespace test_analysis_test_table_order {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl;
 
 TEST_CASE("table_order: the error at equal cost falls as cost^-p, p the order") {
@@ -28,3 +30,5 @@ TEST_CASE("table_order: at equal cost, the optimised methods beat the plain comp
     CHECK(error_at_equal_cost(method("blanes_moan_s6")) < 0.1 * error_at_equal_cost(method("yoshida_4")));
     CHECK(error_at_equal_cost(method("blanes_moan_s10")) < error_at_equal_cost(method("yoshida_6")));
 }
+
+}  // namespace test_analysis_test_table_order

@@ -4,6 +4,8 @@
 
 #include <sympl/core/dual.hpp>
 
+namespace test_core_test_dual {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using sympl::dual;
 
 TEST_CASE("dual: derivatives of elementary functions equal their closed forms") {
@@ -86,3 +88,5 @@ TEST_CASE("dual: every <cmath> function a potential may use agrees with finite d
     }
     check("acosh", [](const auto& v) { return acosh(v); }, 1.8);
 }
+
+}  // namespace test_core_test_dual

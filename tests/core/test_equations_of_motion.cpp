@@ -10,6 +10,8 @@
 #include <sympl/hamiltonians/pendulum.hpp>
 #include <sympl/hamiltonians/two_particle_spring.hpp>
 
+namespace test_core_test_equations_of_motion {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl;
 
 namespace {
@@ -85,3 +87,5 @@ TEST_CASE("two_particle_spring: the exact solution (centre of mass + relative os
     CHECK(max_difference(x, h.exact(x0, 10.0)) < 1e-12);
     CHECK(std::fabs(energy(h, h.exact(x0, 10.0)) - energy(h, x0)) < 1e-14);
 }
+
+}  // namespace test_core_test_equations_of_motion

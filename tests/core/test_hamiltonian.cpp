@@ -20,6 +20,8 @@
 #include <sympl/hamiltonians/toda.hpp>
 #include <sympl/hamiltonians/two_particle_spring.hpp>
 
+namespace test_core_test_hamiltonian {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl;
 
 namespace {
@@ -197,3 +199,5 @@ TEST_CASE("force_derivative: the analytic FPU-beta one and the potential's Hessi
     force_derivative(henon_heiles_potential_only{}, q2, u2, hh_duals);
     CHECK((hh_analytic - hh_duals).cwiseAbs().maxCoeff() <= 1e-15);
 }
+
+}  // namespace test_core_test_hamiltonian

@@ -7,6 +7,8 @@
 #include <sympl/hamiltonians/harmonic_oscillator.hpp>
 #include <sympl/hamiltonians/kepler.hpp>
 
+namespace test_core_test_integrate {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl;
 
 namespace {
@@ -149,3 +151,5 @@ TEST_CASE("a resume point that would group the steps differently is refused") {
     bad.force = bad.velocity = Eigen::VectorXd::Zero(3);
     CHECK_THROWS_WITH_AS(d.restore(bad), doctest::Contains("memory of sizes 3, 3, 0, 0 (compensated)"), invalid_argument);
 }
+
+}  // namespace test_core_test_integrate

@@ -5,6 +5,8 @@
 
 #include <sympl/core/phase_space.hpp>
 
+namespace test_core_test_phase_space {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl;
 
 TEST_CASE("phase_space: mismatched dimensions are refused with both sizes named") {
@@ -32,3 +34,5 @@ TEST_CASE("phase_space: finiteness, distance and casts") {
     CHECK(d.size() == 2);
     CHECK(d.p[1] == 4.0L);
 }
+
+}  // namespace test_core_test_phase_space

@@ -10,6 +10,8 @@
 #include <sympl/hamiltonians/kepler.hpp>
 #include <sympl/hamiltonians/pendulum.hpp>
 
+namespace test_core_test_splitting_stepper {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl;
 
 TEST_CASE("splitting_stepper: fixed-size and dynamic states give identical trajectories") {
@@ -312,3 +314,5 @@ TEST_CASE("splitting_stepper: a force-gradient table's stability interval is whe
     CHECK(std::fabs(trace(0.999 * h)) < 2);
     CHECK(std::fabs(trace(1.001 * h)) > 2);
 }
+
+}  // namespace test_core_test_splitting_stepper

@@ -12,6 +12,8 @@
 #include <sympl/analysis/table_order.hpp>
 #include <sympl/hamiltonians/pendulum.hpp>
 
+namespace test_core_test_table {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl;
 
 namespace {
@@ -253,3 +255,5 @@ TEST_CASE("table: force-gradient coefficients merge, scale by w^3 in composition
     CHECK(message_of([] { table("bad", {0.5L, 0.5L}, {1, 0}, {0}, 2, "test"); })
               .find("gradient has 1 coefficients and kick has 2") != std::string::npos);
 }
+
+}  // namespace test_core_test_table

@@ -12,6 +12,8 @@
 #include <sympl/hamiltonians/kepler.hpp>
 #include <sympl/hamiltonians/pendulum.hpp>
 
+namespace test_interop_test_odeint {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl;
 namespace odeint = boost::numeric::odeint;
 
@@ -121,3 +123,5 @@ TEST_CASE("odeint: LogH and extrapolated steppers run in Odeint's drivers, in fi
     CHECK(physical_time(Z) == doctest::Approx(2 * M_PI).epsilon(1e-8));
     CHECK(max_difference(physical_state(Z), hamiltonians::kepler::initial_state(0.9)) < 1e-6);
 }
+
+}  // namespace test_interop_test_odeint

@@ -8,6 +8,8 @@
 #include <sympl/sympl.hpp>
 #include <sympl/hamiltonians/kepler.hpp>
 
+namespace test_methods_test_adaptive {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl;
 
 namespace {
@@ -91,3 +93,5 @@ TEST_CASE("adaptive: bad options and states are rejected with the value named") 
     bad.q[0] = HUGE_VAL;
     CHECK_THROWS_WITH_AS(integrate_adaptive(s, bad, 0.0, 1.0), doctest::Contains("not finite"), invalid_argument);
 }
+
+}  // namespace test_methods_test_adaptive

@@ -9,6 +9,8 @@
 #include <sympl/analysis/table_order.hpp>
 #include <sympl/hamiltonians/pendulum.hpp>
 
+namespace test_methods_test_catalog {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl;
 
 namespace {
@@ -291,3 +293,5 @@ TEST_CASE("catalog: unknown names list the valid ones") {
         CHECK(what.find("sofroniou_spaletta_10") != std::string::npos);
     }
 }
+
+}  // namespace test_methods_test_catalog

@@ -11,6 +11,8 @@
 #include <sympl/hamiltonians/harmonic_oscillator.hpp>
 #include <sympl/hamiltonians/pendulum.hpp>
 
+namespace test_methods_test_classic_steppers {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl;
 
 namespace {
@@ -328,3 +330,5 @@ TEST_CASE("classic: steppers run through the driver with time-dependent forces")
     integrate_until(s, y, 0.0, 2.0, 0.01);
     CHECK(max_difference(y, damped.exact(start, 4.0)) > 1e-3);
 }
+
+}  // namespace test_methods_test_classic_steppers

@@ -15,6 +15,8 @@
 #include <sympl/hamiltonians/damped_driven_oscillator.hpp>
 #include <sympl/hamiltonians/pendulum.hpp>
 
+namespace test_methods_test_conformal_splitting {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl;
 
 namespace {
@@ -268,3 +270,5 @@ TEST_CASE("conformal_splitting: a table that ends and starts with a kick reuses 
     CHECK(y.q[0] == x.q[0]);
     CHECK(y.p[0] == x.p[0]);
 }
+
+}  // namespace test_methods_test_conformal_splitting

@@ -14,6 +14,8 @@
 #include <sympl/hamiltonians/harmonic_oscillator.hpp>
 #include <sympl/hamiltonians/kepler.hpp>
 
+namespace test_methods_test_dense_output {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl;
 
 namespace {
@@ -286,3 +288,5 @@ TEST_CASE("dense output: a dynamic-size state gives the fixed-size state's value
         }
     }
 }
+
+}  // namespace test_methods_test_dense_output

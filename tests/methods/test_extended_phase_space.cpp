@@ -12,6 +12,8 @@
 #include <sympl/hamiltonians/product_hamiltonian.hpp>
 #include <sympl/methods/extended_phase_space.hpp>
 
+namespace test_methods_test_extended_phase_space {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl;
 
 namespace {
@@ -346,3 +348,5 @@ TEST_CASE("extended phase space: bad step sizes, tables and options are refused 
         CHECK_NOTHROW((void)make_tao_stepper<State>(product, method(name)));
     }
 }
+
+}  // namespace test_methods_test_extended_phase_space

@@ -15,6 +15,8 @@
 #include <sympl/hamiltonians/pendulum.hpp>
 #include <sympl/hamiltonians/relativistic_pendulum.hpp>
 
+namespace test_methods_test_extrapolation {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl;
 using X1 = phase_space<double, 1>;
 
@@ -123,3 +125,5 @@ TEST_CASE("extrapolation: LogH leapfrog extrapolated keeps order 2k on Kepler e 
     CHECK(max_difference(physical_state(X), hamiltonians::kepler::exact_state(0.9, 6 * pi)) < 1e-6);
     CHECK(r.force_evaluations >= 48 * 21);
 }
+
+}  // namespace test_methods_test_extrapolation

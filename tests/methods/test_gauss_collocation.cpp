@@ -17,6 +17,8 @@
 #include <sympl/hamiltonians/pendulum.hpp>
 #include <sympl/hamiltonians/product_hamiltonian.hpp>
 
+namespace test_methods_test_gauss_collocation {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl;
 
 namespace {
@@ -407,3 +409,5 @@ TEST_CASE("gauss_collocation: bad input and a solve that does not converge name 
     }
     CHECK(max_difference(fast, before) == 0);
 }
+
+}  // namespace test_methods_test_gauss_collocation

@@ -36,6 +36,8 @@
 #include <sympl/methods/kepler_drift.hpp>
 #include <sympl/methods/planetary_coordinates.hpp>
 
+namespace test_methods_test_kepler_drift {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl;
 
 namespace {
@@ -559,3 +561,5 @@ TEST_CASE("planetary coordinates: a non-positive mass is refused, naming the bod
     CHECK_THROWS_WITH_AS(from_jacobi(s.x, s.mass), doctest::Contains("12 degrees of freedom for 5 bodies"),
                          invalid_argument);
 }
+
+}  // namespace test_methods_test_kepler_drift

@@ -13,6 +13,8 @@
 #include <sympl/hamiltonians/fpu_beta.hpp>
 #include <sympl/hamiltonians/henon_heiles.hpp>
 
+namespace test_methods_test_processing {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl;
 
 namespace {
@@ -224,3 +226,5 @@ TEST_CASE("processing: a kernel solved from the effective conditions alone gets 
     // condition of degree 5 is unmet and the processed method falls to 4.
     CHECK(std::fabs(measure_order(m, order_problem::nonquadratic_kinetic).order - 4) <= 0.15);
 }
+
+}  // namespace test_methods_test_processing

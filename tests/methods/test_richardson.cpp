@@ -7,6 +7,8 @@
 #include <sympl/sympl.hpp>
 #include <sympl/hamiltonians/pendulum.hpp>
 
+namespace test_methods_test_richardson {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl;
 
 namespace {
@@ -67,3 +69,5 @@ TEST_CASE("richardson: combining whole runs of a symmetric method gains two orde
         measure_order([&](std::size_t n) { return richardson_combine(eu(n), eu(2 * n), 1); }, 3.0, double_precision()).order;
     CHECK(std::fabs(euler_combined - 2) <= 0.15);
 }
+
+}  // namespace test_methods_test_richardson

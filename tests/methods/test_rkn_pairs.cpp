@@ -15,6 +15,8 @@
 #include <sympl/hamiltonians/pendulum.hpp>
 #include <sympl/hamiltonians/relativistic_pendulum.hpp>
 
+namespace test_methods_test_rkn_pairs {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl;
 
 namespace {
@@ -430,3 +432,5 @@ TEST_CASE("rkn pairs: bad input is refused with the bad value named") {
     auto ok = make_rkn_stepper<dprkn6, S1>(hamiltonians::pendulum{});
     CHECK_NOTHROW(ok.step(y, 0.1));
 }
+
+}  // namespace test_methods_test_rkn_pairs

@@ -13,6 +13,8 @@
 #include <sympl/hamiltonians/harmonic_oscillator.hpp>
 #include <sympl/hamiltonians/kepler.hpp>
 
+namespace test_methods_test_time_transformation {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl;
 using K = phase_space<double, 2>;
 using KX = phase_space<double, 3>;  // (q, t), (p, p_t)
@@ -153,3 +155,5 @@ TEST_CASE("logh: a dynamic-size state follows the fixed-size one to rounding, pl
         }
     }
 }
+
+}  // namespace test_methods_test_time_transformation

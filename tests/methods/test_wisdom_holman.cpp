@@ -26,6 +26,8 @@
 #include <sympl/methods/kepler_drift.hpp>
 #include <sympl/methods/wisdom_holman.hpp>
 
+namespace test_methods_test_wisdom_holman {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl;
 
 namespace {
@@ -344,3 +346,5 @@ TEST_CASE("wisdom_holman: bad input names the body") {
         CHECK_THROWS_WITH_AS(wh.step(x, 0.1), doctest::Contains("expected a finite number"), invalid_argument);
     }
 }
+
+}  // namespace test_methods_test_wisdom_holman

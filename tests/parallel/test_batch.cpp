@@ -9,6 +9,8 @@
 #include <sympl/hamiltonians/kepler.hpp>
 #include <sympl/sympl.hpp>
 
+namespace test_parallel_test_batch {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl;
 
 namespace {
@@ -86,3 +88,5 @@ TEST_CASE("batch: W trajectories stepped in one state agree with each run alone 
     // One force evaluation advances every lane: counted as for one trajectory.
     CHECK(batch_stepper.force_evaluations() == single_forces);
 }
+
+}  // namespace test_parallel_test_batch

@@ -10,6 +10,8 @@
 #include <sympl/hamiltonians/pendulum.hpp>
 #include <sympl/sympl.hpp>
 
+namespace test_parallel_test_ensemble {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl;
 using hh = hamiltonians::henon_heiles;
 using state = phase_space<double, 2>;
@@ -141,3 +143,5 @@ TEST_CASE("ensemble: over a parameter of the Hamiltonian, each trajectory with i
     for (std::size_t i = 0; i < gravity.size(); ++i)
         CHECK(r[i].quantity == doctest::Approx(M_PI / (2 * std::sqrt(gravity[i]))).epsilon(0.01));
 }
+
+}  // namespace test_parallel_test_ensemble

@@ -12,6 +12,8 @@
 #include "checkpoint.hpp"
 #include "scratch_directory.hpp"
 
+namespace test_program_test_checkpoint {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl::app;
 namespace fs = std::filesystem;
 
@@ -111,3 +113,5 @@ TEST_CASE("checkpoint: truncated, corrupted, foreign or mismatched files are ref
     says(refusal(dir / "missing", r, r.scene_hash, r.dt), "cannot be opened");
     fs::remove_all(dir);
 }
+
+}  // namespace test_program_test_checkpoint

@@ -11,6 +11,8 @@
 #include "scene.hpp"
 #include "systems.hpp"
 
+namespace test_program_test_general_systems {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl::app;
 
 namespace {
@@ -101,3 +103,5 @@ TEST_CASE("general systems: tao(<table>) of a table that is no symmetric leapfro
     fails("semiexplicit(pefrl_4)", "method 'semiexplicit(pefrl_4)': table 'pefrl_4'");
     fails("tao(nonesuch)", "'nonesuch' is not a table");
 }
+
+}  // namespace test_program_test_general_systems

@@ -7,6 +7,8 @@
 
 #include "method_kinds.hpp"
 
+namespace test_program_test_method_kinds {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl::app;
 
 TEST_CASE("method kinds: a name resolves to its kind, a scene's table comes first") {
@@ -156,3 +158,5 @@ TEST_CASE("method kinds: Gauss-Legendre, tao(<table>), semiexplicit(<table>) and
     relativistic.quadratic_kinetic = true;
     CHECK(why_not(*resolve_method("dprkn6_controlled", {}), relativistic).empty());
 }
+
+}  // namespace test_program_test_method_kinds

@@ -12,6 +12,8 @@
 #include "output_set.hpp"
 #include "scratch_directory.hpp"
 
+namespace test_program_test_output_set {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl::app;
 namespace fs = std::filesystem;
 
@@ -85,3 +87,5 @@ TEST_CASE("output_set: a second process is told who holds the directory, a kille
     CHECK(again.stale_removed() == 0);
     fs::remove_all(dir);
 }
+
+}  // namespace test_program_test_output_set

@@ -15,6 +15,8 @@
 #include "report.hpp"
 #include "scene.hpp"
 
+namespace test_program_test_report {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl::app;
 namespace fs = std::filesystem;
 
@@ -127,3 +129,5 @@ TEST_CASE("report: the stiff and extreme studies (stability map, Kepler e = 0.99
     CHECK(std::stod(kepler.back()[4]) < 1e-5);
     fs::remove_all(dir);
 }
+
+}  // namespace test_program_test_report

@@ -13,6 +13,8 @@
 #include "run_plan.hpp"
 #include "run_scene.hpp"
 
+namespace test_program_test_run_scene {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl::app;
 namespace fs = std::filesystem;
 
@@ -141,3 +143,5 @@ TEST_CASE("run: a sweep runs its first (largest) value, says so, and the impossi
               false, single);
     CHECK(single.str().find("a sweep") == std::string::npos);
 }
+
+}  // namespace test_program_test_run_scene

@@ -10,6 +10,8 @@
 #include "run_plan.hpp"
 #include "scene.hpp"
 
+namespace test_program_test_scene {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl::app;
 
 namespace {
@@ -199,3 +201,5 @@ TEST_CASE("scene: checkpoints are for methods that resume bit for bit, others ar
     CHECK(parse_scene(head + "methods = [\"rk4\"]\n", "a.toml").text_hash !=
           parse_scene(head + "methods = [\"rk4\"] \n", "a.toml").text_hash);
 }
+
+}  // namespace test_program_test_scene

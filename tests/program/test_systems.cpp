@@ -10,6 +10,8 @@
 #include "method_kinds.hpp"
 #include "systems.hpp"
 
+namespace test_program_test_systems {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl::app;
 
 namespace {
@@ -119,3 +121,5 @@ TEST_CASE("systems: a scene's own initial state replaces the default and drops t
     CHECK_FALSE(p.exact);
     CHECK(p.energy(p.x0) == doctest::Approx(0.25 * 0.25 / 2 + 4 * 0.25 / 2));
 }
+
+}  // namespace test_program_test_systems

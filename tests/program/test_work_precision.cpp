@@ -5,6 +5,8 @@
 
 #include "work_precision.hpp"
 
+namespace test_program_test_work_precision {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl::app;
 
 TEST_CASE("work precision: the time to a level is interpolated log-log between the bracketing runs") {
@@ -33,3 +35,5 @@ TEST_CASE("work precision: the first crossing counts when roundoff makes the cur
     CHECK(r->below.seconds == 2e-3);
     CHECK(std::log(r->seconds) == doctest::Approx(std::log(1e-3) + 0.5 * std::log(2.0)));
 }
+
+}  // namespace test_program_test_work_precision

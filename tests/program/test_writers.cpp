@@ -13,6 +13,8 @@
 #include "scratch_directory.hpp"
 #include "writers.hpp"
 
+namespace test_program_test_writers {  // one per file: the tests build in batches (CMakeLists.txt)
+
 using namespace sympl::app;
 namespace fs = std::filesystem;
 
@@ -102,3 +104,5 @@ TEST_CASE("writers: gnuplot starts without a shell: a hostile script path runs n
     CHECK_FALSE(fs::exists(marker));
     fs::remove_all(dir);
 }
+
+}  // namespace test_program_test_writers
