@@ -7,6 +7,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include <sympl/sympl.hpp>
@@ -158,8 +159,67 @@ TEST_CASE("dense output: with a real method the error is the step error plus the
     }
 }
 
-TEST_CASE("dense output: the run is integrate_until's, bit for bit, and each step end is evaluated once") {
-    const auto make = [] { return make_stepper<S2>(kepler, method("yoshida_8")); };
+TEST_CASE("dense output: the run is integrate_until's without an observer, bit for bit, for tables joined across steps") {
+    // leapfrog_kdk and yoshida_8 start and end with a kick: an unobserved
+    // splitting run joins those kicks across the steps of a chunk, which an
+    // observer at every step would split (p + h/2 f + h/2 f is not p + h f in
+    // rounding). The dense run must make exactly the unobserved run's
+    // operations: final states compared with ==. 140 steps of 0.05 and a
+    // shortened one: three chunks of check_every = 64, outputs in each, at
+    // step ends inside a chunk, at chunk ends, at t0, at t_end, and ties.
+    const double t_end = 7.03, dt = 0.05;
+    const std::vector<double> times{0.0, 0.0, 0.01, 0.05, 1.234, 3.2, 3.2, 3.225, 4.0, 6.4, 6.99, 7.0, 7.03};
+    for (const std::string name : {"leapfrog_kdk", "yoshida_8", "leapfrog_dkd"}) {
+        CAPTURE(name);
+        const auto make = [&] { return make_stepper<S2>(kepler, method(name)); };
+        auto plain = make();
+        S2 x_plain = kepler_exact(0);
+        const run_summary r_plain = integrate_until(plain, x_plain, 0.0, t_end, dt);
+        // The same run observed at every step: the step ends the outputs are compared with.
+        auto observed = make();
+        S2 x_observed = kepler_exact(0);
+        std::vector<S2> ends;
+        integrate_until(observed, x_observed, 0.0, t_end, dt, [&](const S2& y, double) { ends.push_back(y); });
+        auto dense = make();
+        S2 x_dense = kepler_exact(0);
+        std::vector<S2> seen;
+        const dense_summary r = integrate_dense(dense, x_dense, 0.0, t_end, dt, times,
+                                                [&](const S2& y, double) { seen.push_back(y); });
+        CHECK(x_dense.q == x_plain.q);
+        CHECK(x_dense.p == x_plain.p);
+        CHECK(r.steps == r_plain.steps);
+        CHECK(r.force_evaluations == r_plain.force_evaluations);
+        CHECK(r.velocity_evaluations == r_plain.velocity_evaluations);
+        CHECK(r.t == r_plain.t);
+        // The observed run does differ from the plain one for leapfrog (else this test proves nothing).
+        const double split = max_difference(x_observed, x_plain);
+        if (name == "leapfrog_kdk") CHECK(split > 0);
+        // The outputs: at t0 the start itself, at chunk ends (3.2 = 64 dt, 6.4 = 128 dt) the run's
+        // states, elsewhere within rounding of the observed run's interpolant (the inner step ends
+        // are replayed on a copy of the stepper, from the chunk's start).
+        REQUIRE(seen.size() == times.size());
+        CHECK(seen[0].q == kepler_exact(0).q);
+        CHECK(seen[12].q == x_plain.q);
+        CHECK(seen[12].p == x_plain.p);
+        double worst = 0;
+        for (std::size_t i = 0; i < times.size(); ++i) {
+            // At step ends: the observed run's state there, rounding apart.
+            const auto k = static_cast<std::size_t>(std::lround(times[i] / dt));
+            const double d = max_difference(seen[i], ends[std::min(k, ends.size() - 1)]);
+            if (std::fabs(times[i] - double(k) * dt) < 1e-12) worst = std::max(worst, d);
+        }
+        CHECK(worst <= 1e-12);  // step ends: the replayed ones differ from the observed run's by rounding
+        // Replayed: up to the step holding 1.234 (25), 4.0 (80 - 64 = 16) and 6.99 (140 - 128 - 1 = 11);
+        // the chunk ends 3.2 and 6.4 are the run's own states.
+        CHECK(r.replayed_steps == 25 + 16 + 11);
+        MESSAGE(name << ": observed run - plain run " << split << ", step-end outputs - observed step ends " << worst
+                     << ", " << r.replayed_steps << " steps replayed of " << r.steps);
+    }
+}
+
+TEST_CASE("dense output: step ends are the run's, and each step end is evaluated once") {
+    // A stepper without steps(): observed at every step, which is its unobserved run.
+    const auto make = [] { return make_classic<rk4, S2>(kepler); };
     const double t_end = 7.03, dt = 0.05;  // dt does not divide the span: a shortened last step
     // integrate_until with an observer, the step ends recorded.
     auto s1 = make();
@@ -179,12 +239,12 @@ TEST_CASE("dense output: the run is integrate_until's, bit for bit, and each ste
     auto s2 = make();
     S2 x2 = kepler_exact(0);
     std::vector<S2> seen;
-    const dense_summary r2 = integrate_dense(s2, x2, 0.0, t_end, dt, times, [&](const S2& y, double) { seen.push_back(y); });
+    const dense_summary r2 = integrate_dense(s2, kepler, x2, 0.0, t_end, dt, times, [&](const S2& y, double) { seen.push_back(y); });
     CHECK(x2.q == x1.q);
     CHECK(x2.p == x1.p);
     CHECK(r2.steps == r1.steps);
-    CHECK(r2.force_evaluations == r1.force_evaluations);
     CHECK(r2.t == r1.t);
+    CHECK(r2.replayed_steps == 0);
     REQUIRE(seen.size() == times.size());
     bool same_ends = true;
     for (std::size_t i = 0; i < ends.size(); ++i) same_ends = same_ends && seen[2 * i].q == ends[i].q && seen[2 * i].p == ends[i].p;
@@ -194,16 +254,19 @@ TEST_CASE("dense output: the run is integrate_until's, bit for bit, and each ste
     CHECK(r2.extra_force_evaluations == r1.steps + 1);
     CHECK(r2.extra_velocity_evaluations == r1.steps + 1);
 
-    // A time-aware classic stepper against integrate_until without an observer.
-    const auto rk = [] { return make_classic<rk4, S2>(kepler); };
-    auto c1 = rk();
-    auto c2 = rk();
-    S2 y1 = kepler_exact(0), y2 = y1;
-    integrate_until(c1, y1, 0.0, t_end, dt);
-    const std::vector<double> one{3.0};
-    integrate_dense(c2, kepler, y2, 0.0, t_end, dt, one, [](const S2&, double) {});
-    CHECK(y2.q == y1.q);
-    CHECK(y2.p == y1.p);
+    // A splitting stepper with outputs in every step: each end once too, and
+    // every step but the last of each chunk replayed once.
+    auto s3 = make_stepper<S2>(kepler, method("yoshida_8"));
+    auto s4 = make_stepper<S2>(kepler, method("yoshida_8"));
+    S2 x3 = kepler_exact(0), x4 = x3;
+    integrate_until(s3, x3, 0.0, t_end, dt);
+    const dense_summary r4 = integrate_dense(s4, x4, 0.0, t_end, dt, times, [](const S2&, double) {});
+    CHECK(x4.q == x3.q);
+    CHECK(x4.p == x3.p);
+    CHECK(r4.extra_force_evaluations == r4.steps + 1);
+    // 141 steps: chunks of 64, 64, 12 and the shortened one: 63 + 63 + 11 replayed.
+    CHECK(r4.steps == 141);
+    CHECK(r4.replayed_steps == 137);
 }
 
 TEST_CASE("dense output: one output costs the two ends of its step only") {
@@ -215,6 +278,10 @@ TEST_CASE("dense output: one output costs the two ends of its step only") {
         const dense_summary r = integrate_dense(s, x, 0.0, 10.0, 0.1, one, [&](const S2&, double t) { at = t; }, order);
         CHECK(at == 1.234);
         CHECK(r.extra_force_evaluations == 2);
+        // 1.234 is in step 13 of the first chunk: 12 steps in one call, then one step,
+        // on a copy of the stepper (leapfrog: 12 + 1 forces, then 2).
+        CHECK(r.replayed_steps == 13);
+        CHECK(r.replay_force_evaluations == 15);
         if (order == hermite_order::cubic) {
             CHECK(r.extra_velocity_evaluations == 2);
         } else {

@@ -141,6 +141,36 @@ void check_dt(T dt, const char* who) {
     if (!isfinite(dt) || !(dt > T(0)))
         throw invalid_argument(std::string(who) + ": dt = " + number(dt) + "; expected a finite step size > 0");
 }
+
+// integrate_until's steps from t0 to t_end: n steps of dt, then one of `rest`
+// when rest > 0 (the span checked first; `who` names the caller in errors).
+// integrate_dense (methods/dense_output.hpp) needs the same step indices.
+template <class T>
+struct until_steps {
+    std::size_t n = 0;
+    T rest{};
+};
+template <class T>
+until_steps<T> until_plan(T t0, T t_end, T dt, const char* who) {
+    using std::isfinite;
+    using std::floor;
+    check_dt(dt, who);
+    if (!isfinite(t0) || !isfinite(t_end) || !(t_end > t0))
+        throw invalid_argument(std::string(who) + ": t_end = " + number(t_end) + " with t0 = " + number(t0) +
+                               "; expected finite times with t_end > t0");
+    const T span = t_end - t0;
+    // The step count must fit before it is converted (a float beyond the
+    // integer range is undefined behaviour).
+    if (!(span / dt < T(1e18)))
+        throw invalid_argument(std::string(who) + ": t_end - t0 = " + number(span) + " in steps of dt = " + number(dt) +
+                               " is " + number(span / dt) + " steps; expected at most 1e18");
+    auto n = static_cast<std::size_t>(floor(span / dt));
+    T rest = span - T(n) * dt;
+    // A remainder at roundoff level means dt divides the span.
+    if (rest <= T(8) * std::numeric_limits<double>::epsilon() * span) rest = T(0);
+    if (n == 0 && rest == T(0)) n = 1;
+    return {n, rest};
+}
 }  // namespace detail
 
 // n steps of size dt from time t0. observer(state, t) is called at t0, after
@@ -188,24 +218,7 @@ run_summary integrate_until(Stepper& stepper, typename Stepper::state_type& x, t
                             run_options options = {}) {
     using T = typename Stepper::scalar;
     using State = typename Stepper::state_type;
-    using std::isfinite;
-    using std::floor;
-    detail::check_dt(dt, "integrate_until");
-    if (!isfinite(t0) || !isfinite(t_end) || !(t_end > t0))
-        throw invalid_argument("integrate_until: t_end = " + detail::number(t_end) + " with t0 = " + detail::number(t0) +
-                               "; expected finite times with t_end > t0");
-    const T span = t_end - t0;
-    // The step count must fit before it is converted (a float beyond the
-    // integer range is undefined behaviour).
-    if (!(span / dt < T(1e18)))
-        throw invalid_argument("integrate_until: t_end - t0 = " + detail::number(span) + " in steps of dt = " +
-                               detail::number(dt) + " is " + detail::number(span / dt) +
-                               " steps; expected at most 1e18");
-    auto n = static_cast<std::size_t>(floor(span / dt));
-    T rest = span - T(n) * dt;
-    // A remainder at roundoff level means dt divides the span.
-    if (rest <= T(8) * std::numeric_limits<double>::epsilon() * span) rest = T(0);
-    if (n == 0 && rest == T(0)) n = 1;
+    const auto [n, rest] = detail::until_plan(t0, t_end, dt, "integrate_until");
     const auto f0 = detail::forces(stepper);
     const auto v0 = detail::velocities(stepper);
     run_summary r = integrate_steps(stepper, x, t0, dt, n, observer, options);

@@ -25,11 +25,12 @@
 // at an output time is the step's error plus the interpolation error), so
 // the interpolant's order matters only up to the method's.
 //
-// integrate_dense runs the stepper through integrate_until (core/integrate.hpp)
-// with an observer, so the steps are exactly those of integrate_until with an
-// observer: the same states, bit for bit (a splitting stepper joins the last
-// sub-step of a step with the first of the next when run unobserved in
-// chunks, which changes rounding; with an observer it steps one at a time).
+// integrate_dense leaves the run as integrate_until (core/integrate.hpp) makes
+// it without an observer, bit for bit, also for a splitting stepper, which
+// joins the last sub-step of a step with the first of the next inside the
+// chunks an unobserved run steps in (observing every step would split them
+// and change the rounding): the step ends inside a chunk that holds output
+// times are formed on a copy of the stepper (see integrate_dense).
 // Forces and velocities at a step end are evaluated at most once each, only
 // when an interpolation inside a neighbouring step needs them, and reused by
 // the next step (the end of one step is the start of the next); their count is
@@ -38,7 +39,9 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <concepts>
 #include <limits>
+#include <optional>
 #include <span>
 #include <string>
 #include <utility>
@@ -213,6 +216,11 @@ struct dense_summary : run_summary {
     std::uint64_t extra_force_evaluations = 0;     // at step ends, for the interpolant
     std::uint64_t extra_velocity_evaluations = 0;  // at step ends (and quintic: M^-1 F, the solve for M dq)
     std::size_t outputs = 0;                       // callbacks made
+    // Steps made a second time, on a copy of the stepper, to form the step
+    // ends inside a chunk that holds output times (integrate_dense), and their cost.
+    std::size_t replayed_steps = 0;
+    std::uint64_t replay_force_evaluations = 0;
+    std::uint64_t replay_velocity_evaluations = 0;
 };
 
 namespace detail {
@@ -236,11 +244,38 @@ void check_output_times(std::span<const T> times, T t0, T t_end, const char* who
 }
 }  // namespace detail
 
-// Runs stepper from x at t0 up to t_end with steps of dt, exactly as
-// integrate_until(stepper, x, t0, t_end, dt, observer) (same steps, same
-// final x bit for bit), and calls callback(state, t) at each of output_times
-// (sorted, within [t0, t_end]) with the state interpolated there (the end
-// state itself when t is a step end). h is the Hamiltonian the stepper runs.
+namespace detail {
+// A stepper whose steps(x, dt, n) or resume_steps differs from n calls of
+// step() by rounding (a splitting stepper joins the last sub-step of a step
+// with the first of the next; a processed stepper processes once per call):
+// observing every step would change its run. Time-aware steppers are stepped
+// one at a time by the drivers, observed or not.
+template <class S>
+concept groups_steps = !time_aware_stepper<S> && (requires(S s, typename S::state_type& x, typename S::scalar dt) {
+    s.steps(x, dt, std::size_t(1));
+} || requires(S s, typename S::state_type& x, typename S::scalar dt) { s.resume_steps(x, dt, std::size_t(1)); });
+}  // namespace detail
+
+// Runs stepper from x at t0 up to t_end with steps of dt and calls
+// callback(state, t) at each of output_times (sorted, within [t0, t_end])
+// with the state interpolated there (the end state itself when t is a step
+// end). h is the Hamiltonian the stepper runs.
+//
+// The run is integrate_until(stepper, x, t0, t_end, dt) without an observer,
+// bit for bit: the same steps grouped the same way, the same final x and the
+// same run_summary. A stepper that groups steps (detail::groups_steps: a
+// splitting, processed or Wisdom-Holman stepper) is run by integrate_until in
+// its chunks of run_options::check_every steps, observed only at the chunk
+// ends (which does not change how the steps group; integrate.hpp, first_step),
+// and the step ends inside a chunk that holds output times are made by a copy
+// of the stepper, replayed from the chunk's start: steps(m) up to the start of
+// the step holding an output time, then steps(1) (the chunk's last step ends
+// on the run's own state). Those inner step ends differ from the run's
+// (which never forms them) by rounding only; the replay costs at most a
+// chunk's steps per chunk holding outputs, counted in replayed_steps and
+// replay_*_evaluations. So Stepper must be copyable, and a copy must step
+// independently of the original. Other steppers (time-aware ones, or with
+// step() only) are observed at every step, which is their unobserved run.
 template <fixed_step_stepper Stepper, class H, class Callback>
     requires separable_hamiltonian<H, typename Stepper::state_type::vector>
 dense_summary integrate_dense(Stepper& stepper, const H& h, typename Stepper::state_type& x,
@@ -249,31 +284,100 @@ dense_summary integrate_dense(Stepper& stepper, const H& h, typename Stepper::st
                               Callback&& callback, hermite_order order = hermite_order::cubic) {
     using T = typename Stepper::scalar;
     using State = typename Stepper::state_type;
-    detail::check_dt(dt, "integrate_dense");
-    detail::check_output_times<T>(output_times, t0, t_end, "integrate_dense");
+    const char* who = "integrate_dense";
+    const auto plan = detail::until_plan(t0, t_end, dt, who);
+    detail::check_output_times<T>(output_times, t0, t_end, who);
     step_interpolant<H, State> dense(h, order);
     State out = x;
     std::size_t next = 0;
-    bool started = false;
-    auto observer = [&](const State& s, T t) {
-        if (!started) {
-            dense.start(s, t);
-            started = true;
-        } else {
-            dense.push(s, t);
-        }
-        for (; next < output_times.size() && output_times[next] <= t; ++next) {
-            dense.evaluate(output_times[next], out);
-            callback(std::as_const(out), output_times[next]);
-        }
-    };
-    dense_summary r;
-    static_cast<run_summary&>(r) = integrate_until(stepper, x, t0, t_end, dt, observer);
-    // The last step ends at t0 + n dt, which may fall short of t_end by a
-    // rounding when dt divides the span: the last polynomial covers the rest.
-    for (; next < output_times.size(); ++next) {
+    const auto emit = [&] {
         dense.evaluate(output_times[next], out);
         callback(std::as_const(out), output_times[next]);
+        ++next;
+    };
+    dense_summary r;
+    if constexpr (!detail::groups_steps<Stepper>) {
+        bool started = false;
+        auto observer = [&](const State& s, T t) {
+            if (!started) {
+                dense.start(s, t);
+                started = true;
+            } else {
+                dense.push(s, t);
+            }
+            while (next < output_times.size() && output_times[next] <= t) emit();
+        };
+        static_cast<run_summary&>(r) = integrate_until(stepper, x, t0, t_end, dt, observer);
+        // The last step ends at t0 + n dt, which may fall short of t_end by a
+        // rounding when dt divides the span: the last polynomial covers the rest.
+        while (next < output_times.size()) emit();
+    } else {
+        static_assert(std::copy_constructible<Stepper>,
+                      "integrate_dense replays chunks of a stepper that groups steps on a copy of it: "
+                      "expected a copyable stepper");
+        const std::size_t n = plan.n, last = plan.rest > T(0) ? n + 1 : n;  // index of the last step end
+        const auto time_of = [&](std::size_t i) { return i <= n ? t0 + T(i) * dt : t_end; };
+        run_options chunks;  // integrate_until's defaults, observed once per chunk
+        chunks.observe_every = chunks.check_every;
+        const std::size_t chunk = chunks.check_every;
+        std::optional<Stepper> shadow;
+        State start = x, y = x;
+        std::size_t start_index = 0, dense_end = 0;  // dense_end: the interpolant's end, when it is a run state
+        // m steps of the copy from step index `from`, y its state.
+        const auto replay = [&](std::size_t from, std::size_t m) {
+            if (!shadow) shadow.emplace(stepper);
+            const auto f = detail::forces(*shadow), v = detail::velocities(*shadow);
+            detail::advance(*shadow, y, t0, dt, from, m, false);
+            r.replay_force_evaluations += detail::forces(*shadow) - f;
+            r.replay_velocity_evaluations += detail::velocities(*shadow) - v;
+            r.replayed_steps += m;
+        };
+        bool started = false;
+        auto observer = [&](const State& s, T t) {
+            if (!started) {
+                started = true;
+                dense.start(s, t);
+                while (next < output_times.size() && output_times[next] <= t) emit();
+                start = s;
+                return;
+            }
+            const std::size_t i1 = start_index < n ? std::min(start_index + chunk, n) : n + 1;
+            // The last chunk also takes times beyond its end by a rounding (see above).
+            const auto inside = [&] { return next < output_times.size() && (output_times[next] <= t || i1 == last); };
+            if (inside()) {
+                std::size_t cur = start_index;
+                if (dense_end != cur) dense.start(start, time_of(cur));
+                y = start;
+                while (inside()) {
+                    const T tau = output_times[next];
+                    if (tau == t && cur < i1) {  // the chunk's end: the run's own state, nothing to replay
+                        callback(std::as_const(s), tau);
+                        ++next;
+                        continue;
+                    }
+                    std::size_t target = cur;  // the step (target - 1, target] holding tau
+                    while (target < i1 && tau > time_of(target)) ++target;
+                    if (target > cur) {
+                        if (target - 1 > cur) {  // the steps before it in one call, as the run makes them
+                            replay(cur, target - 1 - cur);
+                            dense.start(y, time_of(target - 1));
+                        }
+                        if (target == i1) {
+                            dense.push(s, t);
+                        } else {
+                            replay(target - 1, 1);
+                            dense.push(y, time_of(target));
+                        }
+                        cur = target;
+                    }
+                    emit();
+                }
+                dense_end = cur;
+            }
+            start = s;
+            start_index = i1;
+        };
+        static_cast<run_summary&>(r) = integrate_until(stepper, x, t0, t_end, dt, observer, chunks);
     }
     r.outputs = output_times.size();
     r.extra_force_evaluations = dense.force_evaluations();
