@@ -24,9 +24,12 @@
 // stepper has taken the step containing the event and no further one, and
 // the events recorded are those up to and including it.
 //
-// Compared with section_crossings (poincare_section.hpp: upward crossings of
-// q_k = 0 by bisection on the cubic), an event g = q[k], rising, gives the
-// same points through the common driver, with any g, direction and action.
+// section_crossings (poincare_section.hpp) is the event g = q[k], rising,
+// run through detail::run_events with integrate_steps' steps.
+//
+// Unlike integrate_dense, the run is the one integrate_until makes with an
+// observer at every step: a splitting stepper's kicks are then not joined
+// across steps, which changes its rounding against an unobserved run.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -143,25 +146,15 @@ void check_event_value(T g, std::size_t i, T t, const char* who) {
 }
 }  // namespace detail
 
-// Runs stepper from x at t0 up to t_end with steps of dt (integrate_until's
-// steps) and reports the events' crossings; x ends at t_end, or at the first
-// stop event, interpolated there. h is the Hamiltonian the stepper runs.
-template <fixed_step_stepper Stepper, class H>
-    requires separable_hamiltonian<H, typename Stepper::state_type::vector>
-event_run<typename Stepper::state_type> integrate_events(Stepper& stepper, const H& h,
-                                                         typename Stepper::state_type& x, typename Stepper::scalar t0,
-                                                         typename Stepper::scalar t_end, typename Stepper::scalar dt,
-                                                         const std::vector<event<typename Stepper::state_type>>& events,
-                                                         event_options options = {}) {
+namespace detail {
+// The events of a run that drive(observer) makes (integrate_until or
+// integrate_steps, observing every step) and returns the run_summary of.
+template <class Stepper, class H, class Drive>
+event_run<typename Stepper::state_type> run_events(Stepper& stepper, const H& h, typename Stepper::state_type& x,
+                                                   const std::vector<event<typename Stepper::state_type>>& events,
+                                                   const event_options& options, const char* who, Drive&& drive) {
     using T = typename Stepper::scalar;
     using State = typename Stepper::state_type;
-    using detail::number;
-    const char* who = "integrate_events";
-    detail::check_dt(dt, who);
-    using std::isfinite;
-    if (!isfinite(t0) || !isfinite(t_end) || !(t_end > t0))
-        throw invalid_argument(std::string(who) + ": t_end = " + number(t_end) + " with t0 = " + number(t0) +
-                               "; expected finite times with t_end > t0");
     if (options.interior_points < 0 || options.interior_points > 1000)
         throw invalid_argument(std::string(who) + ": interior_points = " + std::to_string(options.interior_points) +
                                "; expected 0 <= interior_points <= 1000");
@@ -182,7 +175,7 @@ event_run<typename Stepper::state_type> integrate_events(Stepper& stepper, const
                                    std::to_string(static_cast<int>(a)) + "; expected record or stop");
     }
 
-    struct stop_signal {};  // ends integrate_until from the observer at a stop event
+    struct stop_signal {};  // ends the driver from the observer at a stop event
     step_interpolant<H, State> dense(h, options.order);
     const std::size_t n_events = events.size();
     const int k = options.interior_points;
@@ -248,7 +241,7 @@ event_run<typename Stepper::state_type> integrate_events(Stepper& stepper, const
     const auto f0 = detail::forces(stepper);
     const auto v0 = detail::velocities(stepper);
     try {
-        static_cast<run_summary&>(result) = integrate_until(stepper, x, t0, t_end, dt, observer);
+        static_cast<run_summary&>(result) = drive(observer);
     } catch (const stop_signal&) {
         const event_hit<State>& last = result.hits.back();
         x = last.state;
@@ -261,6 +254,29 @@ event_run<typename Stepper::state_type> integrate_events(Stepper& stepper, const
     result.extra_force_evaluations = dense.force_evaluations();
     result.extra_velocity_evaluations = dense.velocity_evaluations();
     return result;
+}
+
+}  // namespace detail
+
+// Runs stepper from x at t0 up to t_end with steps of dt (integrate_until's
+// steps) and reports the events' crossings; x ends at t_end, or at the first
+// stop event, interpolated there. h is the Hamiltonian the stepper runs.
+template <fixed_step_stepper Stepper, class H>
+    requires separable_hamiltonian<H, typename Stepper::state_type::vector>
+event_run<typename Stepper::state_type> integrate_events(Stepper& stepper, const H& h,
+                                                         typename Stepper::state_type& x, typename Stepper::scalar t0,
+                                                         typename Stepper::scalar t_end, typename Stepper::scalar dt,
+                                                         const std::vector<event<typename Stepper::state_type>>& events,
+                                                         event_options options = {}) {
+    using detail::number;
+    const char* who = "integrate_events";
+    detail::check_dt(dt, who);
+    using std::isfinite;
+    if (!isfinite(t0) || !isfinite(t_end) || !(t_end > t0))
+        throw invalid_argument(std::string(who) + ": t_end = " + number(t_end) + " with t0 = " + number(t0) +
+                               "; expected finite times with t_end > t0");
+    return detail::run_events(stepper, h, x, events, options, who,
+                              [&](auto& observer) { return integrate_until(stepper, x, t0, t_end, dt, observer); });
 }
 
 // The same with the stepper's own Hamiltonian.
