@@ -82,6 +82,22 @@ TEST_CASE("events: oscillator zero crossings at pi/2 + k pi, within the interpol
     }
 }
 
+TEST_CASE("events: far from t = 0 the root is located in the step, not limited by the rounding of t") {
+    // From t0 = 1e6 the spacing of doubles near t is 1.2e-10: a root sought in
+    // t could leave |g| up to 4 eps |t| |dg/dt| = 8.9e-10 on the interpolant.
+    // Sought in the step's fraction, g at the returned state is zero to the
+    // rounding of q (|q| <= 1 here: 1e-15), whatever t.
+    const double t0 = 1e6, dt = 0.1;
+    auto s = make_stepper<S1>(oscillator, method("leapfrog_kdk"));
+    S1 x = cosine(0);
+    const auto run = integrate_events(s, x, t0, t0 + 20, dt, {zero_of_q(event_direction::both)});
+    REQUIRE(run.hits.size() >= 6);
+    double worst = 0;
+    for (const auto& hit : run.hits) worst = std::max(worst, std::fabs(hit.state.q[0]));
+    CHECK(worst <= 1e-15);
+    MESSAGE("t0 = 1e6: largest |g| at the located states " << worst << " (4 eps |t| = " << 4 * 2.2e-16 * t0 << ")");
+}
+
 TEST_CASE("events: with exact step ends the event time error is the interpolation's alone") {
     // q = cos t, step ends exact; dt = 0.3. Near a zero |q''''| = |q^(6)| =
     // |cos t| <= sin dt: the cubic's q error <= dt^4/384 sin dt = 6.2e-6, the

@@ -10,7 +10,9 @@
 // stay inside it, bisection otherwise).
 //
 // An event time is a zero of g along the interpolant to within
-// event_options::time_tolerance + 4 eps |t|; the interpolant's own error
+// event_options::time_tolerance + 4 eps dt (the root is sought in the step's
+// fraction th, and the state is the interpolant's at th; the time reported,
+// t0 + th dt, is rounded to t's precision); the interpolant's own error
 // (dense_output.hpp: O(dt^4) for the cubic, O(dt^6) in q for the quintic,
 // plus the method's error at the step ends) moves it by that error over
 // |dg/dt|. A crossing counts in the step (ta, tb] in which g goes from < 0 to
@@ -179,7 +181,7 @@ event_run<typename Stepper::state_type> run_events(Stepper& stepper, const H& h,
     step_interpolant<H, State> dense(h, options.order);
     const std::size_t n_events = events.size();
     const int k = options.interior_points;
-    std::vector<T> g_end(n_events), g_samples(n_events * std::size_t(k + 2)), times(std::size_t(k + 2));
+    std::vector<T> g_end(n_events), g_samples(n_events * std::size_t(k + 2)), fractions(std::size_t(k + 2));
     std::vector<event_hit<State>> found;
     event_run<State> result;
     State y = x;
@@ -198,36 +200,40 @@ event_run<typename Stepper::state_type> run_events(Stepper& stepper, const H& h,
         }
         dense.push(s, t);
         const T ta = dense.t0(), tb = dense.t1(), step = tb - ta;
-        // g at the samples: the start (kept from the last step), interior points, the end.
+        // g at the samples: the start (kept from the last step), interior points, the end,
+        // at fractions th of the step (times ta + th step).
         const std::size_t m = std::size_t(k) + 2;
-        times[0] = ta;
-        times[m - 1] = tb;
-        for (std::size_t j = 1; j + 1 < m; ++j) times[j] = ta + step * (T(j) / T(m - 1));
+        const auto time_at = [&](T th) { return th == T(1) ? tb : ta + step * th; };
+        fractions[0] = 0;
+        fractions[m - 1] = 1;
+        for (std::size_t j = 1; j + 1 < m; ++j) fractions[j] = T(j) / T(m - 1);
         for (std::size_t i = 0; i < n_events; ++i) {
             g_samples[i * m] = g_end[i];
             g_samples[i * m + m - 1] = g_end[i] = g_of(i, s, tb);
         }
         for (std::size_t j = 1; j + 1 < m; ++j) {
-            dense.evaluate(times[j], y);
-            for (std::size_t i = 0; i < n_events; ++i) g_samples[i * m + j] = g_of(i, y, times[j]);
+            dense.evaluate_fraction(fractions[j], y);
+            for (std::size_t i = 0; i < n_events; ++i) g_samples[i * m + j] = g_of(i, y, time_at(fractions[j]));
         }
         found.clear();
-        const T tolerance = T(options.time_tolerance);
+        // The root is sought in th: its rounding is relative to the step, not to t.
+        const T tolerance = T(options.time_tolerance) / step;
         for (std::size_t i = 0; i < n_events; ++i)
             for (std::size_t j = 0; j + 1 < m; ++j) {
                 const T ga = g_samples[i * m + j], gb = g_samples[i * m + j + 1];
                 const bool rising = ga < 0 && gb >= 0, falling = ga > 0 && gb <= 0;
                 const auto d = events[i].direction;
                 if (!((rising && d != event_direction::falling) || (falling && d != event_direction::rising))) continue;
-                const auto along = [&](T t_) {
-                    dense.evaluate(t_, y);
-                    return g_of(i, y, t_);
+                const auto along = [&](T th) {
+                    dense.evaluate_fraction(th, y);
+                    return g_of(i, y, time_at(th));
                 };
                 event_hit<State> hit;
                 hit.event = i;
                 hit.rising = rising;
-                hit.t = detail::brent_root(along, times[j], times[j + 1], ga, gb, tolerance);
-                dense.evaluate(hit.t, hit.state);
+                const T th = detail::brent_root(along, fractions[j], fractions[j + 1], ga, gb, tolerance);
+                hit.t = time_at(th);
+                dense.evaluate_fraction(th, hit.state);
                 found.push_back(std::move(hit));
             }
         std::stable_sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.t < b.t; });

@@ -7,9 +7,9 @@
 // dq/dt = dT/dp, dp/dt = -dV/dq at both ends) and the state interpolated
 // there. The points are accurate to the interpolant's O(dt^4) about the step
 // ends (|error| <= dt^4/384 max|x''''| in each component, plus |dx/dt| times
-// the time's error, which is that of q_k over |dq_k/dt| and the rounding of
-// t, 4 eps |t|) whatever the method's order, without stepping the flow
-// backwards. q_k of a point is set to 0 exactly.
+// the time's error, that of q_k over |dq_k/dt|; the root is found to
+// rounding in the step's fraction, 4 eps dt) whatever the method's order,
+// without stepping the flow backwards. q_k of a point is set to 0 exactly.
 #include <cstddef>
 #include <string>
 #include <type_traits>

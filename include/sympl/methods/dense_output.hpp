@@ -110,9 +110,24 @@ public:
             out = e0.x;
             return;
         }
+        evaluate_fraction((t - e0.t) / (e1.t - e0.t), out);
+    }
+    // The same at t0 + th (t1 - t0): th = 0 and 1 give the end states exactly.
+    // A root sought in th is not limited by the rounding of t (events.hpp).
+    void evaluate_fraction(scalar th, State& out) {
+        const end& e0 = end_[a_];
+        const end& e1 = end_[1 - a_];
+        if (th == scalar(1)) {
+            out = e1.x;
+            return;
+        }
+        if (th == scalar(0)) {
+            out = e0.x;
+            return;
+        }
         prepare(end_[a_]);
         prepare(end_[1 - a_]);
-        const scalar h = e1.t - e0.t, th = (t - e0.t) / h, u = 1 - th;
+        const scalar h = e1.t - e0.t, u = 1 - th;
         out = e0.x;
         if (order_ == hermite_order::cubic) {
             // Basis of HNW I eq. II.6.7 written out: values and slopes at 0 and 1.
