@@ -215,6 +215,20 @@ TEST_CASE("dense output: the run is integrate_until's without an observer, bit f
         MESSAGE(name << ": observed run - plain run " << split << ", step-end outputs - observed step ends " << worst
                      << ", " << r.replayed_steps << " steps replayed of " << r.steps);
     }
+    // A processed stepper (its kernel's steps joined within a call, the
+    // processor applied once per call) likewise.
+    const auto processed_one = [] {
+        return processed_stepper<hamiltonians::kepler, S2>(kepler, processed("bcm_2006_p8"));
+    };
+    auto plain = processed_one(), observed = processed_one(), dense = processed_one();
+    S2 x_plain = kepler_exact(0), x_observed = x_plain, x_dense = x_plain;
+    integrate_until(plain, x_plain, 0.0, t_end, dt);
+    integrate_until(observed, x_observed, 0.0, t_end, dt, [](const S2&, double) {});
+    const dense_summary r = integrate_dense(dense, x_dense, 0.0, t_end, dt, times, [](const S2&, double) {});
+    CHECK(x_dense.q == x_plain.q);
+    CHECK(x_dense.p == x_plain.p);
+    CHECK(r.replayed_steps == 25 + 16 + 11);
+    MESSAGE("bcm_2006_p8 processed: observed run - plain run " << max_difference(x_observed, x_plain));
 }
 
 TEST_CASE("dense output: step ends are the run's, and each step end is evaluated once") {
