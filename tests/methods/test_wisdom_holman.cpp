@@ -7,7 +7,11 @@
 //       eps h^2 for the leapfrog and as eps h^4 (+ eps^2 h^2) for SABA_2
 //       (Laskar & Robutel 2001, Celest. Mech. Dyn. Astron. 80, 39);
 //   (c) on the outer solar system it is far below the T + V leapfrog's at the same step;
-//   (d) bad input names the body.
+//   (d) bad input names the body;
+//   (e) the symplectic corrector (Wisdom, Holman & Touma 1996): its weights
+//       solve their conditions; the leapfrog's energy error goes from eps h^2
+//       to eps h^(2K+2) + eps^2 h^2 (slopes in h and in the planet masses);
+//       chunks, a new dt, its cost; non-leapfrog tables refused.
 // Also: steps(n) against n calls of step(), the counters, and the drivers.
 #include <doctest/doctest.h>
 
@@ -290,6 +294,151 @@ TEST_CASE("wisdom_holman: steps(n) equals n calls of step() to rounding, counter
     CHECK(r.steps == 500);
     wh.steps(x, -h, 500);
     CHECK(max_difference(x, s.start) < 1e-12);
+}
+
+// The corrector's weights (corrector_weights): for the conditions see wisdom_holman.hpp.
+// [u^2n] of (u/2) coth(u/2) is B_2n / (2n)!, of (u/2) / sinh(u/2) it is
+// (2^(1-2n) - 1) B_2n / (2n)! (Bernoulli numbers B_2n).
+TEST_CASE("wisdom_holman: the corrector weights solve their conditions") {
+    const long double bernoulli[] = {1.0L / 6, -1.0L / 30, 1.0L / 42, -1.0L / 30, 5.0L / 66, -691.0L / 2730, 7.0L / 6, -3617.0L / 510};
+    for (const leapfrog_kernel kernel : {leapfrog_kernel::kick_drift_kick, leapfrog_kernel::drift_kick_drift})
+        for (int order : {3, 5, 7, 9, 11, 17}) {
+            const std::vector<coefficient> c = corrector_weights(order, kernel);
+            REQUIRE(int(c.size()) == (order - 1) / 2);
+            long double factorial = 1;  // (2k - 1)!
+            for (std::size_t k = 1; k <= c.size(); ++k) {
+                if (k > 1) factorial *= (2 * k - 2) * (2 * k - 1);
+                long double moment = 0, size = 0;
+                for (std::size_t i = 0; i < c.size(); ++i) {
+                    const long double term = 4 * c[i] * std::pow(corrector_alpha * (i + 1), 2 * k - 1) / factorial;
+                    moment += term, size += std::fabs(term);
+                }
+                const long double series = bernoulli[k - 1] / (factorial * 2 * k) *
+                                           (kernel == leapfrog_kernel::kick_drift_kick ? 1 : std::pow(2.0L, 1 - 2 * int(k)) - 1);
+                INFO("order " << order << ", k = " << k);
+                // Cancellation: the terms are up to 1e8 times their sum; long double has 1e-19.
+                CHECK(std::fabs(double(moment + series)) < 1e-17 * double(size));
+            }
+        }
+    CHECK_THROWS_WITH_AS(corrector_weights(4, leapfrog_kernel::kick_drift_kick),
+                         doctest::Contains("order 4; expected 3, 5, 7, 9, 11 or 17"), invalid_argument);
+}
+
+// Wisdom, Holman & Touma 1996: the corrected leapfrog's energy error is
+// O(eps h^(2K+2) + eps^2 h^2) for the corrector of order 2K + 1, instead of the
+// leapfrog's O(eps h^2). Slopes in h where eps^2 h^2 is negligible (eps = 1e-7:
+// the corrector's own order shows), and in eps where it dominates (order 17 at
+// the step users take, 1/20 of the inner period).
+TEST_CASE("wisdom_holman: the corrector takes the leapfrog's energy error from eps h^2 to eps^2 h^2") {
+    const double span = 20 * two_pi;
+    for (const std::string name : {"leapfrog_kdk", "leapfrog_dkd"}) {
+        const table& lf = method(name);
+        const auto corrected = [&](const planetary_system& s, int order, double h) {
+            wisdom_holman_stepper<State> wh(s.mass, s.G, lf, {order});
+            State x = s.start;
+            const long double e0 = nbody_energy(s.mass, s.G, x);
+            double worst = 0;
+            for (std::size_t k = 0, n = std::size_t(std::lround(span / h)); k < n; ++k) {
+                wh.step(x, h);  // every step's output corrected, the run going on uncorrected
+                worst = std::max(worst, double(std::fabs((nbody_energy(s.mass, s.G, x) - e0) / e0)));
+            }
+            return worst;
+        };
+        SUBCASE("order in h") {
+            for (int order : {3, 5}) {
+                std::vector<double> hs, errors;
+                for (double k : {10.0, 14.0, 20.0}) {
+                    hs.push_back(two_pi / k);
+                    errors.push_back(corrected(two_planets(1e-7), order, hs.back()));
+                }
+                const double in_h = slope(hs, errors);
+                MESSAGE(name << ", corrector " << order << ", eps = 1e-7: errors " << errors[0] << ", " << errors[1] << ", "
+                             << errors[2] << " at h = 2 pi / 10, 14, 20: slope " << in_h << " (theory " << order + 1 << ")");
+                CHECK(std::fabs(in_h - (order + 1)) < 0.3);
+            }
+        }
+        SUBCASE("eps^2 in place of eps, at h = 1/20 of the inner period") {
+            const double h = two_pi / 20;
+            const double plain[2] = {corrected(two_planets(1e-3), 0, h), corrected(two_planets(1e-4), 0, h)};
+            const double fixed[2] = {corrected(two_planets(1e-3), 17, h), corrected(two_planets(1e-4), 17, h)};
+            MESSAGE(name << ", h = 2 pi / 20: eps = 1e-3, 1e-4: " << plain[0] << ", " << plain[1] << " (ratio "
+                         << plain[0] / plain[1] << ") without, " << fixed[0] << ", " << fixed[1] << " (ratio "
+                         << fixed[0] / fixed[1] << ") with corrector 17; cut by " << plain[0] / fixed[0] << " at eps = 1e-3");
+            CHECK(std::fabs(std::log10(plain[0] / plain[1]) - 1) < 0.15);
+            CHECK(std::fabs(std::log10(fixed[0] / fixed[1]) - 2) < 0.15);
+            // The cut is c / eps with c the ratio of the two error constants,
+            // O(1) by the theory: at least 0.05 / eps.
+            CHECK(plain[0] / fixed[0] > 0.05 / 1e-3);
+        }
+    }
+}
+
+TEST_CASE("wisdom_holman: on the outer solar system the corrector's error scales as the planets' masses squared") {
+    const double h = 200;  // days: 1/22 of Jupiter's period
+    const std::size_t n = 2000, every = 10;
+    double errors[2][2] = {};  // [scale 1, 0.1][without, with corrector 11]
+    for (int m = 0; m < 2; ++m) {
+        const planetary_system s = outer_solar_system(m == 0 ? 1.0 : 0.1);
+        const long double e0 = nbody_energy(s.mass, s.G, s.start);
+        for (int c = 0; c < 2; ++c) {
+            wisdom_holman_stepper<State> wh(s.mass, s.G, method("leapfrog_kdk"), {c == 0 ? 0 : 11});
+            State x = s.start;
+            for (std::size_t k = 0; k < n; k += every) {
+                wh.steps(x, h, every);
+                errors[m][c] = std::max(errors[m][c], double(std::fabs(nbody_energy(s.mass, s.G, x) / e0 - 1)));
+            }
+        }
+    }
+    MESSAGE("h = 200 days, 2000 steps: largest relative energy error " << errors[0][0] << " without, " << errors[0][1]
+            << " with corrector 11 (cut by " << errors[0][0] / errors[0][1] << "); planet masses / 10: ratios "
+            << errors[0][0] / errors[1][0] << " without, " << errors[0][1] / errors[1][1] << " with");
+    CHECK(std::fabs(std::log10(errors[0][0] / errors[1][0]) - 1) < 0.15);
+    CHECK(std::fabs(std::log10(errors[0][1] / errors[1][1]) - 2) < 0.15);
+    CHECK(errors[0][0] / errors[0][1] > 0.05 / 1e-3);  // c / eps as above, Jupiter's eps ~ 1e-3
+}
+
+TEST_CASE("wisdom_holman: the corrector in and out: chunks, a new dt, the cost, refused tables") {
+    const planetary_system s = two_planets(1e-3);
+    const double h = two_pi / 20;
+    for (const std::string name : {"leapfrog_kdk", "leapfrog_dkd"}) {
+        const table& lf = method(name);
+        const int order = 11, K = 5;
+        // In and out with no step between: C(C^-1(x)) = x to rounding.
+        wisdom_holman_stepper<State> wh(s.mass, s.G, lf, {order});
+        State x = s.start;
+        wh.steps(x, h, 0);
+        CHECK(max_difference(x, s.start) < 100 * eps * 2);
+        // One run against ten chunks: the chunks go on from the uncorrected
+        // state, so they differ by rounding only (a kick of h against two of
+        // h/2 where the chunks meet), grown as n^1.5 eps (see the first test).
+        wisdom_holman_stepper<State> one(s.mass, s.G, lf, {order}), chunks(s.mass, s.G, lf, {order});
+        State a = s.start, b = s.start;
+        const std::size_t n = 1000;
+        one.steps(a, h, n);
+        for (int k = 0; k < 10; ++k) chunks.steps(b, h, n / 10);
+        INFO(name);
+        CHECK(max_difference(a, b) < std::pow(double(n), 1.5) * eps * 2);
+        // C^-1 and C cost 4K Kepler drifts and 4K - 1 interaction evaluations
+        // each (the middle two kicks of C are at one position).
+        const bool kick_first = lf.substeps().front().kind == substep::kick;
+        CHECK(one.kepler_drifts() == (kick_first ? n : n + 1) + 2 * 4 * K);
+        CHECK(one.interaction_evaluations() == (kick_first ? n + 1 : n) + 2 * (4 * K - 1));
+        // A new dt re-loads from the state handed in, as a fresh stepper would.
+        State c = a;
+        one.step(c, h / 2);
+        wisdom_holman_stepper<State> fresh(s.mass, s.G, lf, {order});
+        State d = a;
+        fresh.step(d, h / 2);
+        CHECK(max_difference(c, d) == 0);
+    }
+    // The same tables under other names are leapfrogs too.
+    CHECK_NOTHROW(wisdom_holman_stepper<State>(s.mass, s.G, method("sbab_1"), {3}));
+    CHECK_NOTHROW(wisdom_holman_stepper<State>(s.mass, s.G, method("saba_1"), {3}));
+    CHECK_THROWS_WITH_AS(wisdom_holman_stepper<State>(s.mass, s.G, method("saba_2"), {5}),
+                         doctest::Contains("symplectic corrector of order 5 with table 'saba_2'; expected the leapfrog"),
+                         invalid_argument);
+    CHECK_THROWS_WITH_AS(wisdom_holman_stepper<State>(s.mass, s.G, method("leapfrog_kdk"), {4}),
+                         doctest::Contains("order 4; expected 3, 5, 7, 9, 11 or 17"), invalid_argument);
 }
 
 TEST_CASE("wisdom_holman: bad input names the body") {

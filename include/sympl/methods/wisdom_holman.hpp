@@ -49,14 +49,47 @@
 // (two kicks, or two Kepler drifts: both flows add), so the leapfrog costs one
 // Kepler drift and one interaction evaluation per step.
 //
+// Symplectic corrector (Wisdom, Holman & Touma 1996, "Symplectic correctors",
+// Fields Inst. Commun. 10, 217), for the leapfrog only:
+// wisdom_holman_options{.corrector_order = 3, 5, 7, 9, 11 or 17}. Write
+// A = H_Kepler, B = H_interaction + H_jump, u = h ad_A (ad_A X = {A, X}). To
+// first order in B (Baker-Campbell-Hausdorff), the leapfrog is the exact flow
+// over h of
+//     A + f(u) B,   f(u) = (u/2) coth(u/2)  kick-drift-kick,  (u/2) / sinh(u/2)  drift-kick-drift,
+// and f(u) - 1 = u^2/12 - u^4/720 ... (or -u^2/24 + 7 u^4/5760 ...) is the
+// O(eps h^2) error: even powers of ad_A acting on B, all in the range of
+// ad_A. So a near-identity canonical map C, the flow over h of g(u) B with
+// u g(u) = +-(f(u) - 1) (odd in u), removes them: C (leapfrog) C^-1 is the
+// flow over h of A + B + O(eps^2 h^2). C is built of
+// the two flows themselves: Z(a, b) = drift(a h) kick(b h) drift(-2a h)
+// kick(-b h) drift(a h) is, to first order in B, the flow of
+// 2 h b sinh(a u) B (the kick carried along the Kepler flow and back), and
+//     C = Z(-a_K, -c_K) ... Z(-a_1, -c_1) Z(a_1, c_1) ... Z(a_K, c_K)
+// that of 4 h sum_i c_i sinh(a_i u) B. The a_i = i sqrt(7/40) scale the
+// drifts (Kepler flows), the c_i the kicks; corrector_weights() gives c_i
+// solving the conditions for u, u^3 .. u^(2K-1), which leaves
+// O(eps h^(2K+2) + eps^2 h^2): "order 2K + 1". The sign is settled by
+// measurement: with the c_i negated the leapfrog's energy error doubles
+// instead of dropping 100-fold (tests/methods/test_wisdom_holman.cpp).
+// The stepper applies C^-1 on the way in (after the conversion to democratic
+// heliocentric coordinates) and C on the way out, and keeps the uncorrected
+// state to go on from: a run in chunks equals one run to rounding. C depends
+// on dt: a call with another dt converts the state handed in afresh. Each of
+// C and C^-1 costs 4K Kepler drifts and 4K - 1 interaction evaluations, once
+// per call of step() or steps(). The corrector changes what the state means
+// (the output is corrected), not the run: the long-run error left is
+// O(eps^2 h^2), a drift of the mean motions, so positions still converge as h^2.
+//
 // Bad input is an invalid_argument naming the body: a non-positive or
 // non-finite mass, a non-finite coordinate, a planet at the star's position or
 // two planets at one position. A state that becomes non-finite during a run
 // (a blow-up) is returned as non-finite, as splitting_stepper does, for the
 // drivers of integrate.hpp to report.
 //
-// Not done: the symplectic correctors of Wisdom, Holman & Touma (1996), Jacobi
-// coordinates in this stepper, close encounters.
+// Not done: Jacobi coordinates in this stepper, close encounters, correctors
+// for kernels other than the leapfrog (e.g. Laskar & Robutel 2001's for
+// SABA_n), correctors of the eps^2 h^2 term.
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -78,6 +111,84 @@
 
 namespace sympl {
 
+// Which leapfrog a corrector is for: kick(h/2) drift(h) kick(h/2) or
+// drift(h/2) kick(h) drift(h/2) (drift = Kepler flow, kick = perturbation).
+enum class leapfrog_kernel { kick_drift_kick, drift_kick_drift };
+
+// The node spacing of the correctors, a_i = i alpha (Wisdom, Holman & Touma 1996).
+inline constexpr coefficient corrector_alpha = 0.41833001326703777398908601289259374469640768464934L;  // sqrt(7/40)
+
+// The weights c_1..c_K of the symplectic corrector of order 2K + 1 for the
+// leapfrog `kernel`, c_i with the node a_i = i alpha; they solve, for k = 1..K,
+//     4 sum_i c_i a_i^(2k-1) / (2k-1)! = -[u^(2k)] f(u),
+//     f(u) = (u/2) / sinh(u/2)  (drift-kick-drift),  (u/2) coth(u/2)  (kick-drift-kick)
+// (the header comment of wisdom_holman_stepper derives this). Orders 3, 5, 7,
+// 9, 11, 17; anything else is an invalid_argument.
+inline std::vector<coefficient> corrector_weights(int order, leapfrog_kernel kernel) {
+    // Drift-kick-drift: Wisdom, Holman & Touma 1996 (Fields Inst. Commun. 10,
+    // 217), orders 3 to 11, and order 17 as tabulated with them in REBOUND's
+    // WHFast (Rein & Tamayo 2015, MNRAS 452, 376; Rein, Tamayo & Brown 2019,
+    // MNRAS 489, 4632), listed there last node first; the third-order weight
+    // is listed there with the opposite sign, here in the convention of the
+    // others. Order 9 is not in that list: derived here
+    // from the conditions above, as are all the kick-drift-kick weights.
+    // tests/methods/test_wisdom_holman.cpp checks every set against the conditions.
+    static const std::vector<coefficient> dkd3 = {0.024900596027799867499350357910273437184309981229127L};
+    static const std::vector<coefficient> dkd5 = {0.041500993379666445832250596517122395307183302048545L,
+                                                  -0.0083001986759332891664501193034244790614366604097090L};
+    static const std::vector<coefficient> dkd7 = {0.053964399093127498721765893493510877532452806339655L,
+                                                  -0.018270923246702131478062356884535264841652263842597L,
+                                                  0.0024926811426922105779030593952776964450539008582219L};
+    static const std::vector<coefficient> dkd9 = {0.0640415312967437851275674L, -0.0283480554503184178838639L,  // derived
+                                                  0.00681145208709919046610370L, -0.000719795157401163314700107L};
+    static const std::vector<coefficient> dkd11 = {0.072593394748842738674253180742744961827622366521517L,
+                                                   -0.038121613681288650508647613260247372125243616270670L,
+                                                   0.012309078592019946317544564763237909911330686448336L,
+                                                   -0.0023487215292295354188307328851055489876255097419754L,
+                                                   0.00020361579647854651301632818774633716473696537436847L};
+    static const std::vector<coefficient> dkd17 = {0.093056103771425958591541059067553547100903397724386L,
+                                                   -0.065192863576377893658290760803725762027864651086787L,
+                                                   0.032422198864713580293681523029577130832258806467604L,
+                                                   -0.012071760822342291062449751726959664253913904872527L,
+                                                   0.0033132577069380655655490196833451994080066801611459L,
+                                                   -0.00063599983075817658983166881625078545864140848560259L,
+                                                   0.000076436355227935738363241846979413475106795392377415L,
+                                                   -0.0000043347415473373580190650223498124944896789841432241L};
+    // Kick-drift-kick: derived here (60-digit solve of the conditions above).
+    static const std::vector<coefficient> kdk3 = {-0.0498011920555997349987007L};
+    static const std::vector<coefficient> kdk5 = {-0.0758875307513900723789725L, 0.0130431693478951686901359L};
+    static const std::vector<coefficient> kdk7 = {-0.0933429534284742684491358L, 0.0270075074895625255462666L,
+                                                  -0.00349108453541683921403266L};
+    static const std::vector<coefficient> kdk9 = {-0.106498512897734520225491L, 0.0401630669588227773226213L,
+                                                  -0.00912918145081408997532756L, 0.000939682819232875126882483L};
+    static const std::vector<coefficient> kdk11 = {-0.117138179727557266931154L, 0.0523226861929059164148086L,
+                                                   -0.0159689672699858557146829L, 0.00296628602491339830891370L,
+                                                   -0.000253325400710065397753902L};
+    static const std::vector<coefficient> kdk17 = {-0.141145021791536283325715L, 0.0840532782569635626416991L,
+                                                   -0.0395047158916151646192265L, 0.0143144674267565145453236L,
+                                                   -0.00386896812574578830945957L, 0.000735606570239877964660653L,
+                                                   -0.0000878464443772894551519141L, 0.00000495968846994483317479279L};
+    const bool dkd = kernel == leapfrog_kernel::drift_kick_drift;
+    switch (order) {
+        case 3: return dkd ? dkd3 : kdk3;
+        case 5: return dkd ? dkd5 : kdk5;
+        case 7: return dkd ? dkd7 : kdk7;
+        case 9: return dkd ? dkd9 : kdk9;
+        case 11: return dkd ? dkd11 : kdk11;
+        case 17: return dkd ? dkd17 : kdk17;
+        default:
+            throw invalid_argument("symplectic corrector of order " + std::to_string(order) +
+                                   "; expected 3, 5, 7, 9, 11 or 17");
+    }
+}
+
+// Options of wisdom_holman_stepper.
+struct wisdom_holman_options {
+    // 0: none; 3, 5, 7, 9, 11 or 17: the symplectic corrector of that order
+    // (leapfrog tables only).
+    int corrector_order = 0;
+};
+
 template <class State>
     requires phase_space_state<State> && std::is_floating_point_v<typename State::scalar>
 class wisdom_holman_stepper {
@@ -86,8 +197,8 @@ public:
     using scalar = typename State::scalar;
 
     // mass[0] is the star, mass[1..N] the planets (all finite and > 0), G > 0.
-    wisdom_holman_stepper(std::vector<double> mass, double G, table method)
-        : mass_(std::move(mass)), G_(G), table_(std::move(method)) {
+    wisdom_holman_stepper(std::vector<double> mass, double G, table method, wisdom_holman_options options = {})
+        : mass_(std::move(mass)), G_(G), table_(std::move(method)), options_(options) {
         const std::string who = "wisdom_holman_stepper: ";
         if (mass_.size() < 2)
             throw invalid_argument(who + std::to_string(mass_.size()) +
@@ -105,6 +216,23 @@ public:
             throw invalid_argument(who + "table '" + table_.name() +
                                    "' has force-gradient kicks; expected a table of plain kicks and drifts");
         ops_ = table_.substeps();
+        if (options_.corrector_order != 0) {
+            // The corrector undoes the leapfrog's own error terms (see the
+            // header): it is wrong for any other table.
+            const auto is = [&](substep::kind_t outer) {
+                return ops_.size() == 3 && ops_[0].kind == outer && ops_[0].weight == 0.5L && ops_[1].weight == 1 &&
+                       ops_[2].weight == 0.5L;
+            };
+            if (!is(substep::kick) && !is(substep::drift))
+                throw invalid_argument(who + "symplectic corrector of order " +
+                                       std::to_string(options_.corrector_order) + " with table '" + table_.name() +
+                                       "'; expected the leapfrog, kick-drift-kick or drift-kick-drift with weights "
+                                       "1/2, 1, 1/2 (leapfrog_kdk, leapfrog_dkd)");
+            const auto c = corrector_weights(options_.corrector_order, is(substep::kick)
+                                                                           ? leapfrog_kernel::kick_drift_kick
+                                                                           : leapfrog_kernel::drift_kick_drift);
+            for (coefficient w : c) corrector_weights_.push_back(static_cast<scalar>(w));
+        }
         for (const substep& o : ops_) weights_.push_back(static_cast<scalar>(o.weight));
         joined_weight_ = static_cast<scalar>(ops_.back().weight + ops_.front().weight);
         joined_ = ops_.size() > 1 && ops_.front().kind == ops_.back().kind;
@@ -124,7 +252,7 @@ public:
         if (!std::isfinite(dt) || dt == scalar(0))
             throw invalid_argument("wisdom_holman_stepper: dt = " + detail::number_text(dt) +
                                    "; expected a finite, non-zero step");
-        load(x);
+        load(x, dt);
         const std::size_t L = ops_.size();
         for (std::size_t k = 0; k < n && finite_; ++k)
             for (std::size_t j = 0; j < L && finite_; ++j) {
@@ -133,7 +261,7 @@ public:
                 if (ops_[j].kind == substep::kick) kick(w * dt);
                 else drift(w * dt);
             }
-        store(x);
+        store(x, dt);
     }
 
     // Batched Kepler drifts of all planets (one per drift sub-step), and
@@ -147,6 +275,7 @@ public:
     void reset_counters() { kepler_drifts_ = interaction_evaluations_ = kepler_fallbacks_ = 0; }
 
     const table& method() const { return table_; }
+    const wisdom_holman_options& options() const { return options_; }
     const std::vector<double>& masses() const { return mass_; }
     double G() const { return G_; }
 
@@ -187,6 +316,12 @@ private:
 
     // The flow of H_Kepler + H_centre over t.
     void drift(scalar t) {
+        kepler(t);
+        centre_ += (t / total_mass_) * momentum_;
+    }
+
+    // The flow of H_Kepler over t.
+    void kepler(scalar t) {
         try {
             kepler_fallbacks_ += kepler_drift_all<scalar>({x_, y_, z_, vx_, vy_, vz_}, gm_, t);
         } catch (const invalid_argument&) {
@@ -195,7 +330,6 @@ private:
             finite_ = false;
             for (auto* v : {&x_, &y_, &z_, &vx_, &vy_, &vz_}) v->assign(planets(), std::numeric_limits<scalar>::quiet_NaN());
         }
-        centre_ += (t / total_mass_) * momentum_;
         ++kepler_drifts_;
         forces_fresh_ = false;
     }
@@ -235,9 +369,34 @@ private:
             }
     }
 
-    // Inertial -> democratic heliocentric, unless x is what this stepper returned last.
-    void load(const State& x) {
-        if (loaded_ && same(x, last_)) return;
+    // The corrector C (direction +1) or its inverse C^-1 (direction -1) for
+    // steps of dt, on the planets' state (the centre of mass is left alone:
+    // H_centre commutes with everything and C's drifts add up to zero):
+    //     C = Z(-a_K, -c_K) ... Z(-a_1, -c_1) Z(a_1, c_1) ... Z(a_K, c_K)   (applied left first)
+    //     Z(a, b) = drift(a dt) kick(b dt) drift(-2a dt) kick(-b dt) drift(a dt).
+    // Z(a, b)^-1 = Z(-a, b), so C^-1 is C with every c_i negated. Neighbouring
+    // drifts are joined (Kepler flows add).
+    void correct(int direction, scalar dt) {
+        const std::size_t K = corrector_weights_.size();
+        scalar pending = 0;  // drift time not yet applied
+        const auto Z = [&](scalar a, scalar b) {
+            if (pending + a != scalar(0)) kepler((pending + a) * dt);
+            kick(b * dt);
+            kepler(scalar(-2) * a * dt);
+            kick(-b * dt);
+            pending = a;
+        };
+        const scalar alpha = static_cast<scalar>(corrector_alpha), s = scalar(direction);
+        for (std::size_t i = K; i-- > 0;) Z(-alpha * scalar(i + 1), -s * corrector_weights_[i]);
+        for (std::size_t i = 0; i < K; ++i) Z(alpha * scalar(i + 1), s * corrector_weights_[i]);
+        kepler(pending * dt);
+    }
+
+    // Inertial -> democratic heliocentric, unless x is what this stepper
+    // returned last (and, with a corrector, for steps of the same dt), then
+    // C^-1 into the leapfrog's coordinates.
+    void load(const State& x, scalar dt) {
+        if (loaded_ && same(x, last_) && (corrector_weights_.empty() || dt == corrected_dt_)) return;
         check(x);
         const State y = to_democratic_heliocentric(x, std::span<const double>(mass_));
         for (std::size_t i = 0; i < planets(); ++i) {
@@ -251,10 +410,25 @@ private:
         forces_fresh_ = false;
         finite_ = true;
         loaded_ = true;
+        if (!corrector_weights_.empty()) {
+            correct(-1, dt);
+            corrected_dt_ = dt;
+        }
     }
 
-    // Democratic heliocentric -> inertial, into x; remembered for the next call.
-    void store(State& x) {
+    std::array<std::vector<scalar>*, 9> planet_arrays() { return {&x_, &y_, &z_, &vx_, &vy_, &vz_, &ax_, &ay_, &az_}; }
+
+    // C out of the leapfrog's coordinates, democratic heliocentric -> inertial,
+    // into x; x is remembered for the next call, the leapfrog's uncorrected
+    // state kept to go on from.
+    void store(State& x, scalar dt) {
+        std::vector<scalar> kept[9];
+        const bool fresh = forces_fresh_;
+        const bool corrected = !corrector_weights_.empty() && finite_;
+        if (corrected) {
+            for (int k = 0; k < 9; ++k) kept[k] = *planet_arrays()[k];
+            correct(+1, dt);
+        }
         State y = x;
         y.q.template segment<3>(0) = centre_;
         y.p.template segment<3>(0) = momentum_;
@@ -267,11 +441,19 @@ private:
         x = from_democratic_heliocentric(y, std::span<const double>(mass_));
         last_ = x;
         loaded_ = finite_;
+        if (corrected) {
+            for (int k = 0; k < 9; ++k) *planet_arrays()[k] = std::move(kept[k]);
+            forces_fresh_ = fresh;
+            finite_ = loaded_;
+        }
     }
 
     std::vector<double> mass_;
     double G_;
     table table_;
+    wisdom_holman_options options_;
+    std::vector<scalar> corrector_weights_;  // c_1..c_K, empty without a corrector
+    scalar corrected_dt_ = 0;                // the dt of the C^-1 applied at the last load
     std::vector<substep> ops_;
     std::vector<scalar> weights_;
     scalar joined_weight_ = 0;
@@ -289,9 +471,10 @@ private:
 // The stepper for a system with members `mass` (star first) and `G`, e.g.
 // hamiltonians::outer_solar_system: make_wisdom_holman<State>(system, method("saba_2")).
 template <class State, class System>
-wisdom_holman_stepper<State> make_wisdom_holman(const System& system, table method) {
+wisdom_holman_stepper<State> make_wisdom_holman(const System& system, table method,
+                                                wisdom_holman_options options = {}) {
     return wisdom_holman_stepper<State>(std::vector<double>(std::begin(system.mass), std::end(system.mass)),
-                                        double(system.G), std::move(method));
+                                        double(system.G), std::move(method), options);
 }
 
 }  // namespace sympl
