@@ -71,6 +71,10 @@ std::string why_not(needs n, const system_form& form) {
             return form.negative_potential ? ""
                                            : "needs V(q) < 0 everywhere (the LogH time transformation divides by -V); "
                                              "this system's potential is not negative (use the table itself)";
+        case needs::planetary:
+            return form.planetary ? ""
+                                  : "needs a planetary system (a star and planets with masses and G; "
+                                    "outer_solar_system); this system is not one (use the table itself)";
     }
     return "needs what no system offers";
 }
@@ -137,6 +141,20 @@ method_spec on_extended_phase_space(const std::string& name, method_kind kind, s
     sympl::detail::leapfrog_composition_weights(*inner->coefficients, "method '" + name + "'");  // throws naming it
     return method_spec{name, kind, inner->coefficients};
 }
+
+// wh(<table>): any plain table (the catalog's or the scene's) without
+// force-gradient kicks; its drifts become Kepler flows, its kicks the
+// planets' interaction.
+method_spec wisdom_holman(const std::string& name, const std::map<std::string, table>& inline_tables) {
+    const std::string inner_name = trimmed(name.substr(3, name.size() - 4));
+    const auto inner = resolve_method(inner_name, inline_tables);
+    if (!inner || inner->kind != method_kind::table || inner->extrapolation_columns || inner->compensated ||
+        inner->coefficients->has_force_gradient())
+        throw invalid_argument("method '" + name + "': '" + inner_name +
+                               "' is not a plain table; expected wh(<a table of kicks and drifts: leapfrog_kdk, "
+                               "saba_2, sbab_3, ...>)");
+    return method_spec{name, method_kind::wisdom_holman, inner->coefficients};
+}
 }  // namespace
 
 std::optional<method_spec> resolve_method(const std::string& name, const std::map<std::string, table>& inline_tables) {
@@ -158,6 +176,7 @@ std::optional<method_spec> resolve_method(const std::string& name, const std::ma
                                    "' has force-gradient kicks; expected logh(<table without them>)");
         return method_spec{name, method_kind::logh, inner->coefficients};
     }
+    if (name.size() > 4 && name.rfind("wh(", 0) == 0 && name.back() == ')') return wisdom_holman(name, inline_tables);
     if (name.size() > 5 && name.rfind("tao(", 0) == 0 && name.back() == ')')
         return on_extended_phase_space(name, method_kind::tao, 4, inline_tables);
     if (name.size() > 14 && name.rfind("semiexplicit(", 0) == 0 && name.back() == ')')

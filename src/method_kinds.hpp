@@ -21,9 +21,9 @@ namespace sympl::app {
 enum class method_kind {
     table, processed, logh, classic, odeint_rk4, odeint_dopri5, odeint_fehlberg78, odeint_bulirsch_stoer,
     gauss_2, gauss_4, gauss_6, tao, semiexplicit,
-    dprkn6, dprkn8, dprkn12, dprkn6_controlled, dprkn8_controlled, dprkn12_controlled,
+    dprkn6, dprkn8, dprkn12, dprkn6_controlled, dprkn8_controlled, dprkn12_controlled, wisdom_holman,
 };
-inline constexpr std::size_t method_kind_count = std::size_t(method_kind::dprkn12_controlled) + 1;
+inline constexpr std::size_t method_kind_count = std::size_t(method_kind::wisdom_holman) + 1;
 
 // What a system's equations offer a method.
 struct system_form {
@@ -35,6 +35,7 @@ struct system_form {
     bool conformal = false;              // dp/dt = F(q, t) - gamma p with dq/dt linear in p: damped tables
     bool general_hamiltonian = false;    // any H(q, p), separable or not: Gauss-Legendre, Tao, semiexplicit
     bool quadratic_kinetic = false;      // separable with T quadratic in p (dq/dt linear in p): the RKN pairs
+    bool planetary = false;              // a star and planets with masses and G: Wisdom-Holman splitting
 };
 
 enum class needs {
@@ -47,6 +48,7 @@ enum class needs {
     splitting,  // a kick-drift table: a separable Hamiltonian, or a damped, driven one (conformal_splitting.hpp)
     general_hamiltonian,  // any H(q, p) (general_hamiltonian.hpp), a separable one too
     quadratic_kinetic,    // a separable Hamiltonian whose T is quadratic in p: q'' = F(q) (rkn_pairs.hpp)
+    planetary,            // point masses about a star, with `mass` (star first) and `G` (wisdom_holman.hpp)
 };
 
 // Why a method that needs `n` cannot run on a system of `form` ("" when it can).
@@ -136,6 +138,11 @@ inline constexpr std::array<method_kind_entry, method_kind_count> method_kind_en
      .adaptive = true, .physical_time = false, .requirement = needs::quadratic_kinetic,
      .not_resumable = rkn_controlled_not_resumable,
      .description = "not symplectic: dprkn12 with its step size controlled, absolute = relative tolerance"},
+    {.kind = method_kind::wisdom_holman, .label = "wisdom_holman", .requirement = needs::planetary,
+     .not_resumable = "it runs in democratic heliocentric coordinates, which a checkpoint does not hold",
+     .description = "wh(<table>): Wisdom-Holman splitting of a planetary system, the table's drifts the exact Kepler "
+                    "flow about the star, its kicks the planets' interaction (wisdom_holman.hpp); leapfrog_kdk, "
+                    "saba_2, ... (tables for T = p^2/2 lose their extra order here)"},
 }};
 
 constexpr const method_kind_entry& entry_of(method_kind kind) { return method_kind_entries[std::size_t(kind)]; }
@@ -181,7 +188,7 @@ classic_facts classic_at(std::size_t index);
 struct method_spec {
     std::string name;
     method_kind kind = method_kind::table;
-    std::optional<table> coefficients;  // for kind == table (force-gradient tables too), logh, tao and semiexplicit
+    std::optional<table> coefficients;  // for kind == table (force-gradient tables too), logh, tao, semiexplicit, wh
     std::optional<processed_method> processing = std::nullopt;  // for kind == processed
     int extrapolation_columns = 0;      // extrapolated(<table or logh(table)>, k): k > 0
     bool compensated = false;           // compensated(<table>): Kahan-summed updates
@@ -203,8 +210,9 @@ std::vector<std::string> method_names_beside_tables();
 // plain tables>) for the table run in LogH fictitious time,
 // extrapolated(<table or logh(table)>, k), tao(<table>) and
 // semiexplicit(<table>) for a symmetric composition of leapfrog steps run on
-// any H(q, p); nullopt when the name is none of these. A malformed
-// extrapolated(...), logh(...), tao(...) or semiexplicit(...) is an
+// any H(q, p), wh(<table>) for the table's Wisdom-Holman splitting of a
+// planetary system; nullopt when the name is none of these. A malformed
+// extrapolated(...), logh(...), tao(...), semiexplicit(...) or wh(...) is an
 // invalid_argument that says what is wrong.
 inline constexpr int max_extrapolation_columns = 12;
 std::optional<method_spec> resolve_method(const std::string& name, const std::map<std::string, table>& inline_tables);

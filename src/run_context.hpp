@@ -54,6 +54,12 @@ constexpr bool meets() {
     } else if constexpr (N == needs::newtonian) return newtonian_form<E>;
     else if constexpr (N == needs::splitting)
         return separable_hamiltonian<Sys, State::vector> || conformal_system<Sys, State::vector>;
+    else if constexpr (N == needs::planetary)
+        return requires(const Sys& s) {
+            std::size(s.mass);
+            double(s.mass[0]);
+            double(s.G);
+        };
     else return damped_newtonian_form<E, State>;
 }
 
@@ -65,7 +71,8 @@ system_form form_of() {
             .differentiable_force = meets<needs::differentiable_force, Sys>(),
             .conformal = conformal_system<Sys, phase_space<double>::vector>,
             .general_hamiltonian = meets<needs::general_hamiltonian, Sys>(),
-            .quadratic_kinetic = meets<needs::quadratic_kinetic, Sys>()};
+            .quadratic_kinetic = meets<needs::quadratic_kinetic, Sys>(),
+            .planetary = meets<needs::planetary, Sys>()};
 }
 
 template <class Sys>

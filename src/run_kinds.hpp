@@ -12,6 +12,7 @@
 
 #include "run_context.hpp"
 #include "run_general.hpp"
+#include "run_planetary.hpp"
 #include "run_odeint.hpp"
 #include "run_rkn.hpp"
 
@@ -110,8 +111,8 @@ bool meets_at_run_time(needs n) {
                                  meets<needs::newtonian, Sys>(),    meets<needs::damped_split, Sys>(),
                                  meets<needs::negative_potential, Sys>(), meets<needs::differentiable_force, Sys>(),
                                  meets<needs::splitting, Sys>(),    meets<needs::general_hamiltonian, Sys>(),
-                                 meets<needs::quadratic_kinetic, Sys>()};
-    static_assert(answers.size() == std::size_t(needs::quadratic_kinetic) + 1);
+                                 meets<needs::quadratic_kinetic, Sys>(),    meets<needs::planetary, Sys>()};
+    static_assert(answers.size() == std::size_t(needs::planetary) + 1);
     return answers[std::size_t(n)];
 }
 

@@ -1,11 +1,14 @@
 // The method-kind registry: how names resolve and what each kind needs.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <string>
+#include <vector>
 
 #include <sympl/methods/catalog.hpp>
 
 #include "method_kinds.hpp"
+#include "systems.hpp"
 
 namespace test_program_test_method_kinds {  // one per file: the tests build in batches (CMakeLists.txt)
 
@@ -157,6 +160,45 @@ TEST_CASE("method kinds: Gauss-Legendre, tao(<table>), semiexplicit(<table>) and
     CHECK(why_not(*resolve_method("dprkn6_controlled", {}), relativistic).find("quadratic in p") != std::string::npos);
     relativistic.quadratic_kinetic = true;
     CHECK(why_not(*resolve_method("dprkn6_controlled", {}), relativistic).empty());
+}
+
+TEST_CASE("method kinds: wh(<table>) resolves a plain table and runs only on a planetary system") {
+    const auto wh = resolve_method("wh( leapfrog_kdk )", {});
+    REQUIRE(wh);
+    CHECK(wh->kind == method_kind::wisdom_holman);
+    CHECK(wh->coefficients->name() == "leapfrog_kdk");
+    CHECK(requirement_of(*wh) == needs::planetary);
+    CHECK(why_not_resumable(*wh).find("democratic heliocentric") != std::string::npos);
+    for (const char* bad : {"wh(chin_4a)", "wh(rk4)", "wh(extrapolated(leapfrog_kdk, 2))", "wh(nonesuch)"})
+        CHECK_THROWS_WITH_AS(resolve_method(bad, {}), doctest::Contains("expected wh(<a table of kicks and drifts"),
+                             sympl::invalid_argument);
+    const problem pendulum = make_problem("pendulum", {}, {}, {}, "test");
+    CHECK_FALSE(pendulum.form.planetary);
+    CHECK(why_not(*wh, pendulum.form) ==
+          "method 'wh( leapfrog_kdk )' needs a planetary system (a star and planets with masses and G; "
+          "outer_solar_system); this system is not one (use the table itself)");
+}
+
+// Wisdom-Holman's error is O(eps h^2) with eps ~ 1e-3 the planets' mass
+// relative to the Sun's, the T + V leapfrog's O(h^2): the same step, an error
+// smaller by about 1/eps; and order 2 in h (Wisdom & Holman 1991).
+TEST_CASE("method kinds: wh(leapfrog_kdk) on the outer solar system, order 2 and far below the T + V leapfrog") {
+    const problem p = make_problem("outer_solar_system", {}, {}, {}, "test");
+    REQUIRE(p.form.planetary);
+    const double t_end = 4000;
+    const std::vector<double> reference = p.reference(0.0, t_end, 10.0, p.x0);
+    const auto error = [&](const std::string& method, double dt) {
+        run_request rq;
+        rq.dt = dt;
+        rq.timing_repeats = 0;
+        rq.energy = true;
+        const run_result r = p.run(*resolve_method(method, {}), rq, 0.0, t_end, p.x0);
+        REQUIRE(r.stable);
+        return relative_difference(r.final_state, reference);
+    };
+    const double coarse = error("wh(leapfrog_kdk)", 200), fine = error("wh(leapfrog_kdk)", 100);
+    CHECK(std::log2(coarse / fine) == doctest::Approx(2).epsilon(0.15 / 2));
+    CHECK(error("leapfrog_kdk", 100) > 100 * fine);
 }
 
 }  // namespace test_program_test_method_kinds

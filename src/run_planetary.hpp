@@ -1,0 +1,19 @@
+#pragma once
+// The kind for planetary systems (run_kind<wisdom_holman>): the method's table
+// run as a Wisdom-Holman splitting (methods/wisdom_holman.hpp), its drifts the
+// exact Kepler flows about the star, its kicks the planets' interaction, in
+// democratic heliocentric coordinates that the stepper keeps between steps
+// (not resumable from a checkpoint, which holds inertial coordinates).
+#include "run_context.hpp"
+
+namespace sympl::app::detail {
+
+template <>
+struct run_kind<method_kind::wisdom_holman> {
+    template <class C>
+    static steps_and_forces run(const C& c) {
+        return c.template drive<false>(make_wisdom_holman<typename C::State>(c.sys, *c.m.coefficients));
+    }
+};
+
+}  // namespace sympl::app::detail
