@@ -3,8 +3,10 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <string>
 
 #include <sympl/methods/catalog.hpp>
+#include <sympl/core/general_hamiltonian.hpp>
 #include <sympl/core/hamiltonian.hpp>
 #include <sympl/core/splitting_stepper.hpp>
 #include <sympl/hamiltonians/double_well.hpp>
@@ -198,6 +200,109 @@ TEST_CASE("force_derivative: the analytic FPU-beta one and the potential's Hessi
     force_derivative(hamiltonians::henon_heiles{}, q2, u2, hh_analytic);
     force_derivative(henon_heiles_potential_only{}, q2, u2, hh_duals);
     CHECK((hh_analytic - hh_duals).cwiseAbs().maxCoeff() <= 1e-15);
+}
+
+namespace {
+// The message of the invalid_argument a call throws ("" if none).
+template <class Call>
+std::string refusal(Call&& call) {
+    try {
+        call();
+    } catch (const invalid_argument& e) {
+        return e.what();
+    }
+    return "";
+}
+}  // namespace
+
+TEST_CASE("check_reads: generic code reading past the state is refused at the first call") {
+    using SX = phase_space<double>;
+    const table lf = method("leapfrog_kdk");
+    const auto kinetic = [](const auto& p) { return 0.5 * p.squaredNorm(); };
+
+    // V reads q[1] of a one-dimensional dynamic state: without the check every
+    // force of a Release build would read memory the state does not own.
+    auto two_d = make_hamiltonian(kinetic, [](const auto& q) { return 0.5 * (q[0] * q[0] + q[1] * q[1]); });
+    auto s = make_stepper<SX>(two_d, lf);
+    SX x(1);
+    x.q[0] = 0.3;
+    const std::string expected = "splitting_stepper: the Hamiltonian's V(q) read q[1] of a state of dimension 1; "
+                                 "expected indices 0..0";
+    CHECK(refusal([&] { s.step(x, 0.1); }) == expected);
+    CHECK(refusal([&] { s.step(x, 0.1); }) == expected);  // refused again, not remembered as checked
+    CHECK(x.q[0] == 0.3);                                  // and the state untouched
+    SX x2(2);
+    CHECK(refusal([&] { s.step(x2, 0.1); }).empty());     // the dimension it is written for runs
+
+    // T reads p[2] of a two-dimensional state, through operator().
+    auto three_p = make_hamiltonian([](const auto& p) { return 0.5 * (p(0) * p(0) + p(2) * p(2)); },
+                                    [](const auto& q) { return 0.5 * q.squaredNorm(); });
+    SX y(2);
+    CHECK(refusal([&] { make_stepper<SX>(three_p, lf).step(y, 0.1); }) ==
+          "splitting_stepper: the Hamiltonian's T(p) read p[2] of a state of dimension 2; expected indices 0..1");
+
+    // A fixed-size state is checked too (Eigen's own check of q[i] is an assert).
+    using S1 = phase_space<double, 1>;
+    auto fixed_read = make_hamiltonian(kinetic, [](const auto& q) { return q(0) * q[1]; });
+    S1 z;
+    CHECK(refusal([&] { make_stepper<S1>(fixed_read, lf).step(z, 0.1); }) ==
+          "splitting_stepper: the Hamiltonian's V(q) read q[1] of a state of dimension 1; expected indices 0..0");
+    // q.y() is a read of q[1] (on a dynamic state: on a fixed one Eigen refuses it at compile time).
+    auto y_read = make_hamiltonian(kinetic, [](const auto& q) { return q.x() * q.y(); });
+    CHECK(refusal([&] { check_state(y_read, SX(1), "splitting_stepper"); }) == expected);
+
+    // A general H(q, p), evaluated as check_state does at a stepper's first call.
+    auto general = make_general_hamiltonian(
+        [](const auto& q, const auto& p) { return 0.5 * (1 + q[0] * q[0]) * (1 + p[1] * p[1]); });
+    CHECK(refusal([&] { check_state(general, SX(1), "gauss_collocation_stepper"); }) ==
+          "gauss_collocation_stepper: the Hamiltonian's H(q, p) read p[1] of a state of dimension 1; "
+          "expected indices 0..0");
+    CHECK(refusal([&] { check_state(general, SX(2), "gauss_collocation_stepper"); }).empty());
+}
+
+TEST_CASE("check_reads: correct Hamiltonians pass and run bit for bit as without the check") {
+    const table lf = method("leapfrog_kdk");
+    // Whole-vector operations only, on a dynamic state.
+    auto whole = make_hamiltonian([](const auto& p) { return 0.5 * p.dot(p); },
+                                  [](const auto& q) {
+                                      using std::cos;
+                                      return 0.5 * q.squaredNorm() + 0.1 * q.sum() * q.sum() +
+                                             q.head(2).norm() - cos(q.segment(1, 2).sum());
+                                  });
+    using SX = phase_space<double>;
+    SX x(3);
+    x.q << 0.3, -0.2, 0.7;
+    x.p << 0.1, 0.4, -0.5;
+    const SX x0 = x;
+    // The checked vector computes what the state's vector computes, bit for bit.
+    using checked = detail::checked_vector<double, Eigen::Dynamic>;
+    const detail::read_site site{"test", "V(q)", "q"};
+    CHECK(whole.potential(checked(x.q, site)) == whole.potential(x.q));
+
+    // The first run is checked (first call for this Hamiltonian type and dimension),
+    // the second is not: their results agree bit for bit.
+    auto first = make_stepper<SX>(whole, lf);
+    first.steps(x, 0.01, 100);
+    SX again = x0;
+    auto second = make_stepper<SX>(whole, lf);
+    second.steps(again, 0.01, 100);
+    CHECK((x.q.array() == again.q.array()).all());
+    CHECK((x.p.array() == again.p.array()).all());
+    CHECK(x.q != x0.q);
+
+    // Indexed reads within the state, fixed size: pass.
+    using S2 = phase_space<double, 2>;
+    auto indexed = make_hamiltonian([](const auto& p) { return 0.5 * (p[0] * p[0] + p(1) * p(1)); },
+                                    [](const auto& q) { using std::cos; return -cos(q[0]) - cos(q.coeff(1)); });
+    S2 z(Eigen::Vector2d(0.5, -0.2), Eigen::Vector2d(0.0, 0.3));
+    CHECK_NOTHROW(make_stepper<S2>(indexed, lf).steps(z, 0.01, 10));
+
+    // A lambda whose signature takes only the concrete vector still runs (unchecked).
+    auto concrete = make_hamiltonian([](const Eigen::VectorXd& p) { return 0.5 * p.squaredNorm(); },
+                                     [](const Eigen::VectorXd& q) { return 0.5 * q.squaredNorm(); });
+    SX w(2);
+    w.q[0] = 1;
+    CHECK(refusal([&] { check_state(concrete, w, "splitting_stepper"); }).empty());
 }
 
 }  // namespace test_core_test_hamiltonian

@@ -410,4 +410,24 @@ TEST_CASE("gauss_collocation: bad input and a solve that does not converge name 
     CHECK(max_difference(fast, before) == 0);
 }
 
+TEST_CASE("gauss_collocation: a general H reading past the state is refused at the first step") {
+    // H reads p[1] of a one-dimensional dynamic state: refused before the
+    // first dH by dual numbers would read past it, naming the index and the dimension.
+    using SX = phase_space<double>;
+    auto h = make_general_hamiltonian(
+        [](const auto& q, const auto& p) { return 0.5 * (1 + q[0] * q[0]) * (1 + p[1] * p[1]); });
+    auto g = make_gauss_collocation<SX>(h, 2);
+    SX x(1);
+    try {
+        g.step(x, 0.1);
+        FAIL("expected invalid_argument");
+    } catch (const invalid_argument& e) {
+        CHECK(std::string(e.what()) == "gauss_collocation_stepper: the Hamiltonian's H(q, p) read p[1] of a state "
+                                       "of dimension 1; expected indices 0..0");
+    }
+    SX y(2);
+    y.q[0] = 0.2;
+    CHECK_NOTHROW(g.step(y, 0.1));  // the dimension it is written for
+}
+
 }  // namespace test_methods_test_gauss_collocation

@@ -7,7 +7,9 @@
 // and, where the user gives them, the analytic gradients
 //     dH_dq(q, p, out), dH_dp(q, p, out)   writing the gradient into out;
 // whatever is missing comes from forward-mode dual numbers (dual.hpp), about
-// n evaluations of H per gradient.
+// n evaluations of H per gradient. A generic energy(q, p) is evaluated once
+// more at a stepper's first call with a new dimension, on vectors that refuse
+// a read past the state (checked_reads.hpp).
 //
 // A kick-drift table needs H = T(p) + V(q) (hamiltonian.hpp): a general
 // Hamiltonian is run by the extended-phase-space methods
@@ -77,7 +79,9 @@ S energy(const H& h, const phase_space<S, D>& x) {
 template <class Fn>
 struct lambda_general_hamiltonian {
     Fn H;
-    template <class Vec> auto energy(const Vec& q, const Vec& p) const { return H(q, p); }
+    // Constrained as lambda_hamiltonian's members (hamiltonian.hpp).
+    template <class Vec> requires std::invocable<const Fn&, const Vec&, const Vec&>
+    auto energy(const Vec& q, const Vec& p) const { return H(q, p); }
 };
 template <class Fn>
 lambda_general_hamiltonian<Fn> make_general_hamiltonian(Fn H) {

@@ -10,7 +10,9 @@
 //     force(q)         -> -dV/dq.
 // Whatever is missing is derived by forward-mode automatic differentiation of
 // kinetic/potential (dual.hpp), which costs about n evaluations of T or V per
-// gradient: give analytic gradients for large systems.
+// gradient: give analytic gradients for large systems. Generic kinetic/potential
+// are evaluated once more at a stepper's first call with a new dimension, on
+// vectors that refuse a read past the state (checked_reads.hpp).
 #include <cmath>
 #include <concepts>
 #include <string>
@@ -18,6 +20,7 @@
 
 #include <Eigen/Core>
 
+#include "checked_reads.hpp"
 #include "dual.hpp"
 #include "error.hpp"
 #include "phase_space.hpp"
@@ -69,7 +72,9 @@ Eigen::Index declared_dimension(const H& h) {
 }
 
 // What a stepper checks once per call, before it touches the state: q and p of
-// one size, the size the Hamiltonian declares (if it does), every component finite.
+// one size, the size the Hamiltonian declares (if it does), every component
+// finite; and, once per dimension, that the Hamiltonian's generic code reads
+// no component past the state's end (checked_reads.hpp).
 template <class H, class State>
 void check_state(const H& h, const State& x, const char* who) {
     if (x.q.size() != x.p.size())
@@ -85,6 +90,7 @@ void check_state(const H& h, const State& x, const char* who) {
         if (!isfinite(x.q[i]) || !isfinite(x.p[i]))
             throw invalid_argument(std::string(who) + ": the state is not finite (component " + std::to_string(i) +
                                    " of q or p); expected finite q and p");
+    check_reads_once(h, x, who);
 }
 
 namespace detail {
@@ -220,8 +226,12 @@ template <class Kinetic, class Potential>
 struct lambda_hamiltonian {
     Kinetic T;
     Potential V;
-    template <class Vec> auto kinetic(const Vec& p) const { return T(p); }
-    template <class Vec> auto potential(const Vec& q) const { return V(q); }
+    // Constrained, so that a lambda whose signature refuses a vector type
+    // (e.g. checked_reads.hpp's) is seen to refuse it rather than fail to compile.
+    template <class Vec> requires std::invocable<const Kinetic&, const Vec&>
+    auto kinetic(const Vec& p) const { return T(p); }
+    template <class Vec> requires std::invocable<const Potential&, const Vec&>
+    auto potential(const Vec& q) const { return V(q); }
 };
 template <class Kinetic, class Potential>
 lambda_hamiltonian<Kinetic, Potential> make_hamiltonian(Kinetic T, Potential V) {
