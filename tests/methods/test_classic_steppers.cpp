@@ -331,4 +331,21 @@ TEST_CASE("classic: steppers run through the driver with time-dependent forces")
     CHECK(max_difference(y, damped.exact(start, 4.0)) > 1e-3);
 }
 
+TEST_CASE("classic steppers: a Hamiltonian reading past the state is refused at the first step") {
+    using SX = phase_space<double>;
+    auto h = make_hamiltonian([](const auto& p) { return 0.5 * p.squaredNorm(); },
+                              [](const auto& q) { return 0.5 * (q[0] * q[0] + q[1] * q[1]); });
+    auto s = make_classic<rk4, SX>(h);
+    SX x(1);
+    try {
+        s.step(x, 0.0, 0.1);
+        FAIL("expected invalid_argument");
+    } catch (const invalid_argument& e) {
+        CHECK(std::string(e.what()) ==
+              "rk4: the Hamiltonian's V(q) read q[1] of a state of dimension 1; expected indices 0..0");
+    }
+    SX y(2);
+    CHECK_NOTHROW(s.step(y, 0.0, 0.1));
+}
+
 }  // namespace test_methods_test_classic_steppers

@@ -349,4 +349,24 @@ TEST_CASE("extended phase space: bad step sizes, tables and options are refused 
     }
 }
 
+TEST_CASE("extended phase space: a general H reading past the state is refused at the first step") {
+    using SX = phase_space<double>;
+    auto h = make_general_hamiltonian(
+        [](const auto& q, const auto& p) { return 0.5 * (1 + q[2] * q[2]) * (1 + p.squaredNorm()); });
+    SX x(2);
+    const std::string read = " the Hamiltonian's H(q, p) read q[2] of a state of dimension 2; expected indices 0..1";
+    for (bool tao : {true, false}) {
+        CAPTURE(tao);
+        try {
+            if (tao) make_tao_stepper<SX>(h, leapfrog).step(x, 0.1);
+            else make_semiexplicit_stepper<SX>(h, leapfrog).step(x, 0.1);
+            FAIL("expected invalid_argument");
+        } catch (const invalid_argument& e) {
+            CHECK(std::string(e.what()) == (tao ? "tao_stepper:" : "semiexplicit_stepper:") + read);
+        }
+    }
+    SX y(3);
+    CHECK_NOTHROW(make_tao_stepper<SX>(h, leapfrog).step(y, 0.1));
+}
+
 }  // namespace test_methods_test_extended_phase_space

@@ -95,6 +95,10 @@ public:
 
     void step(State& x, scalar t, scalar dt) {
         detail::check_classic_step(Rule<State>::name, x, dt);
+        // Hamilton's equations of generic code: reads past the state refused
+        // once per dimension (checked_reads.hpp); other systems are the user's.
+        if constexpr (requires { eq_.system.hamiltonian; })
+            check_reads_once(eq_.system.hamiltonian, x, Rule<State>::name);
         this->advance(eq_, x, t, dt);
     }
 

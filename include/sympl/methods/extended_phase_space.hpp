@@ -301,6 +301,7 @@ private:
 
     void advance(state_type& x, scalar dt, const P* t_start) {
         detail::check_step_size(dt, "tao_stepper");
+        check_reads_once(this->h_, x, "tao_stepper");
         const bool carry = bound_ && x.q.size() == last_.q.size() && x.q == last_.q && x.p == last_.p;
         extended z = carry ? z_ : extended(x);
         bool cached = carry && cached_;
@@ -429,6 +430,7 @@ private:
 
     void advance(state_type& x, scalar dt, P t_end) {
         detail::check_step_size(dt, "semiexplicit_stepper");
+        check_reads_once(this->h_, x, "semiexplicit_stepper");
         const P scale = 1 + detail::primal_norm(x.q) + detail::primal_norm(x.p);
         const P eps = std::numeric_limits<P>::epsilon();
         const P tol = (options_.tolerance > 0 ? P(options_.tolerance) : 8 * eps) * scale;
