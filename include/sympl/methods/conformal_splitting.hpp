@@ -287,6 +287,8 @@ private:
             throw invalid_argument("conformal_stepper: q has " + std::to_string(x.q.size()) + " components but p has " +
                                    std::to_string(x.p.size()) + "; expected equal dimensions");
         if (checked_dimension_ != x.q.size()) {
+            // The Hamiltonian's generic code must not read past the state (checked_reads.hpp).
+            if constexpr (requires { system_.hamiltonian; }) check_reads(system_.hamiltonian, x, "conformal_stepper");
             force_.resize(x.q.size());
             velocity_.resize(x.q.size());
             if (gamma_ != scalar(0)) check_linear_velocity(x.q.size());
