@@ -238,6 +238,23 @@ TEST_CASE("check_reads: generic code reading past the state is refused at the fi
     auto y_read = make_hamiltonian(kinetic, [](const auto& q) { return q.x() * q.y(); });
     CHECK_THROWS_WITH_AS(check_state(y_read, SX(1), "splitting_stepper"), expected, invalid_argument);
 
+    // Blocks are reads too: two bodies in 3-D read from a state of dimension 4.
+    auto bodies = make_hamiltonian(kinetic, [](const auto& q) {
+        using std::sqrt;
+        return -1 / sqrt((q.template segment<3>(0) - q.template segment<3>(3)).squaredNorm());
+    });
+    SX b(4);
+    b.q << 1, 0, 0, 0;
+    CHECK_THROWS_WITH_AS(check_state(bodies, b, "splitting_stepper"),
+                         "splitting_stepper: the Hamiltonian's V(q) read q[3..5] of a state of dimension 4; "
+                         "expected indices 0..3",
+                         invalid_argument);
+    auto tail_read = make_hamiltonian([](const auto& p) { return 0.5 * p.tail(3).squaredNorm(); }, kinetic);
+    CHECK_THROWS_WITH_AS(check_state(tail_read, SX(2), "splitting_stepper"),
+                         "splitting_stepper: the Hamiltonian's T(p) read p[-1..1] of a state of dimension 2; "
+                         "expected indices 0..1",
+                         invalid_argument);
+
     // A general H(q, p), evaluated as check_state does at a stepper's first call.
     auto general = make_general_hamiltonian(
         [](const auto& q, const auto& p) { return 0.5 * (1 + q[0] * q[0]) * (1 + p[1] * p[1]); });

@@ -1,16 +1,17 @@
 #pragma once
 // A Hamiltonian given as generic code (templated kinetic/potential, a general
 // energy(q, p), the lambdas of make_hamiltonian) is evaluated once on vectors
-// that check every component read, before a stepper first runs it on a state
+// that check their element and block reads, before a stepper first runs it on a state
 // of a new dimension. A V(q) that reads q[1] of a one-dimensional state would
 // otherwise read memory it does not own in every force of a Release build
 // (Eigen checks indices with eigen_assert only, which NDEBUG removes).
 //
 // The checked vector derives from the state's own Eigen vector, so whatever
 // compiles for the state compiles for it and whole-vector operations
-// (squaredNorm, dot, segment, arithmetic) run unchanged; only the element
-// reads q[i], q(i), q.coeff(i), q.coeffRef(i) and q.x() .. q.w() are checked.
-// Reads through q.data(), q.array()[i] or a block are not seen.
+// (squaredNorm, dot, sum, arithmetic) run unchanged; only the element
+// reads q[i], q(i), q.coeff(i), q.coeffRef(i), q.x() .. q.w() and the blocks
+// q.segment, q.head, q.tail are checked. Reads through q.data(),
+// q.array()[i] or q.block(...) are not seen.
 //
 // Cost: one evaluation of T and V (or H) per Hamiltonian type, state type,
 // dimension and thread, at a stepper's first call; nothing per step. A Hamiltonian
@@ -34,10 +35,10 @@ struct read_site {
     const char* argument;  // "q" or "p"
 };
 
-template <class S, int N>
-class checked_vector : public Eigen::Matrix<S, N, 1> {
+template <class S, int Dim>
+class checked_vector : public Eigen::Matrix<S, Dim, 1> {
 public:
-    using base = Eigen::Matrix<S, N, 1>;
+    using base = Eigen::Matrix<S, Dim, 1>;
     using Index = Eigen::Index;
 
     checked_vector(const base& v, const read_site& site) : base(v), site_(&site) {}
@@ -68,18 +69,69 @@ public:
     S& z() { return (*this)[2]; }
     S& w() { return (*this)[3]; }
 
+    // Blocks, as Eigen declares them (a run-time or a fixed length), their
+    // range checked: N-body code reads a body as q.segment<3>(3 * i).
+    template <class NType> auto segment(Index start, NType n) const {
+        return base::segment(checked(start, length(n)), n);
+    }
+    template <class NType> auto segment(Index start, NType n) {
+        return base::segment(checked(start, length(n)), n);
+    }
+    template <int N> auto segment(Index start, Index n = N) const {
+        return base::template segment<N>(checked(start, n), n);
+    }
+    template <int N> auto segment(Index start, Index n = N) {
+        return base::template segment<N>(checked(start, n), n);
+    }
+    template <class NType> auto head(NType n) const {
+        checked(0, length(n));
+        return base::head(n);
+    }
+    template <class NType> auto head(NType n) {
+        checked(0, length(n));
+        return base::head(n);
+    }
+    template <int N> auto head(Index n = N) const {
+        checked(0, n);
+        return base::template head<N>(n);
+    }
+    template <int N> auto head(Index n = N) {
+        checked(0, n);
+        return base::template head<N>(n);
+    }
+    template <class NType> auto tail(NType n) const {
+        checked(this->size() - length(n), length(n));
+        return base::tail(n);
+    }
+    template <class NType> auto tail(NType n) {
+        checked(this->size() - length(n), length(n));
+        return base::tail(n);
+    }
+    template <int N> auto tail(Index n = N) const {
+        checked(this->size() - n, n);
+        return base::template tail<N>(n);
+    }
+    template <int N> auto tail(Index n = N) {
+        checked(this->size() - n, n);
+        return base::template tail<N>(n);
+    }
+
 private:
-    Index checked(Index i) const {
+    template <class NType> static Index length(NType n) { return Eigen::internal::get_runtime_value(n); }
+
+    // i itself when components i .. i + count - 1 exist; otherwise the refusal.
+    Index checked(Index i, Index count = 1) const {
         const Index n = this->size();
-        if (i >= 0 && i < n) return i;
+        if (i >= 0 && count >= 0 && i <= n - count) return i;
+        const std::string read = "[" + std::to_string(i) + (count == 1 ? "" : ".." + std::to_string(i + count - 1)) + "]";
         const std::string expected = n > 0 ? "expected indices 0.." + std::to_string(n - 1)
                                            : std::string("expected no read of an empty state");
         if (!site_)  // a vector the user's code built from q or p
-            throw invalid_argument("the Hamiltonian read component " + std::to_string(i) + " of a vector of dimension " +
-                                   std::to_string(n) + "; " + expected);
+            throw invalid_argument("the Hamiltonian read " + read + " of a vector of dimension " + std::to_string(n) +
+                                   "; " + expected);
         throw invalid_argument(std::string(site_->who) + ": the Hamiltonian's " + site_->function + " read " +
-                               site_->argument + "[" + std::to_string(i) + "] of a state of dimension " +
-                               std::to_string(n) + "; " + expected);
+                               site_->argument + read + " of a state of dimension " + std::to_string(n) + "; " +
+                               expected);
     }
 
     const read_site* site_ = nullptr;
