@@ -123,7 +123,8 @@ private:
     Index checked(Index i, Index count = 1) const {
         const Index n = this->size();
         if (i >= 0 && count >= 0 && i <= n - count) return i;
-        const std::string read = "[" + std::to_string(i) + (count == 1 ? "" : ".." + std::to_string(i + count - 1)) + "]";
+        const std::string last = count == 1 ? "" : ".." + std::to_string(i + count - 1);
+        const std::string read = "[" + std::to_string(i) + last + "]";
         const std::string expected = n > 0 ? "expected indices 0.." + std::to_string(n - 1)
                                            : std::string("expected no read of an empty state");
         if (!site_)  // a vector the user's code built from q or p
