@@ -15,6 +15,7 @@ double loop_area_error(const problem& p, const method_spec& m, run_request rq, d
     rq.timing_repeats = 0;
     rq.trajectory = nullptr;
     rq.trajectory_every = rq.energy_series_every = 0;
+    rq.output_times.clear();
     const std::size_t n = p.degrees_of_freedom;
     const double r = 0.05 * std::max(1.0, std::hypot(p.x0[0], p.x0[n])), pi = std::acos(-1.0);
     using State = phase_space<double>;

@@ -17,6 +17,66 @@ namespace sympl::app {
 
 namespace detail {
 
+// Trajectory rows at given times (run_request::output_times), read off the
+// Hermite interpolant (methods/dense_output.hpp) of the step that holds each
+// time, between the states the observed run sees anyway: the run steps
+// exactly as without them. Only a separable Hamiltonian has the velocity and
+// force the interpolant needs (the program refuses other systems first).
+template <class Sys, class State>
+class timed_rows {
+public:
+    timed_rows(const Sys&, const run_request& rq) {
+        if (!rq.output_times.empty())
+            throw invalid_argument("output times: the system is not a separable Hamiltonian, whose velocity and force "
+                                   "the interpolant between steps needs");
+    }
+    void start(const State&, double, bool) {}
+    void after_step(const State&, double) {}
+};
+
+template <class Sys, class State>
+    requires separable_hamiltonian<Sys, typename State::vector>
+class timed_rows<Sys, State> {
+public:
+    timed_rows(const Sys& sys, const run_request& rq)
+        : times_(rq.output_times), out_(rq.trajectory),
+          interpolant_(sys, rq.output_order == 5 ? hermite_order::quintic : hermite_order::cubic) {}
+
+    // The run's first state: t0 (its rows are x itself), or a checkpoint's,
+    // whose rows up to t were written before it was saved.
+    void start(const State& x, double t, bool resumed) {
+        started_ = true;
+        interpolant_.start(x, t);
+        while (next_ < times_.size() && times_[next_] <= t) {
+            if (!resumed) write(times_[next_], x);
+            ++next_;
+        }
+    }
+    void after_step(const State& x, double t) {
+        if (!started_) return start(x, t, false);
+        interpolant_.push(x, t);
+        for (; next_ < times_.size() && times_[next_] <= t; ++next_) {
+            interpolant_.evaluate(times_[next_], at_);
+            write(times_[next_], at_);
+        }
+    }
+
+private:
+    void write(double t, const State& x) {
+        if (!out_) return;
+        *out_ << t;
+        for (double v : stacked(x)) *out_ << ',' << v;
+        *out_ << '\n';
+    }
+
+    const std::vector<double>& times_;
+    std::ostream* out_;
+    step_interpolant<Sys, State> interpolant_;
+    State at_;
+    std::size_t next_ = 0;
+    bool started_ = false;
+};
+
 template <class Sys, int Dim>
 class runner {
 public:
@@ -56,6 +116,8 @@ private:
         std::vector<double> buffer;
         double size0 = 1;
         for (double v : x0) size0 = std::max(size0, std::fabs(v));
+        const bool timed = !rq.output_times.empty();
+        timed_rows<Sys, State> rows(sys_, rq);
         const auto observe = [&](const State& x, double t) {
             if (energy || rq.energy_series_every || rq.trajectory_every) buffer = stacked(x);
             if (energy) {
@@ -75,6 +137,7 @@ private:
                 for (double v : buffer) *rq.trajectory << ',' << v;
                 *rq.trajectory << '\n';
             }
+            if (timed) rows.after_step(x, t);
             if (rq.progress && (step & 0x3FFFF) == 0 && step > 0) rq.progress(t);
             ++step;
         };
@@ -85,6 +148,7 @@ private:
         if (const checkpoint_record* from = rq.checkpoint.resume) {
             step = from->step + 1;
             r.max_energy_error = from->max_energy_error;
+            if (timed) rows.start(to_state<Dim>(from->state), t0 + double(from->step) * rq.dt, true);
         }
         if (rq.checkpoint.save)
             with_checkpoints.checkpoint.save = [&](checkpoint_record& record) {

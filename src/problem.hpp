@@ -39,6 +39,11 @@ struct run_request {
     bool energy = false;                  // track the max relative energy error
     std::size_t energy_series_every = 0;  // record (t, energy error) every k steps
     std::size_t trajectory_every = 0;     // write t, q, p every k steps to *trajectory
+    // Or write them at these times (sorted, in the span), interpolated inside
+    // the steps by the Hermite interpolant of this order, 3 or 5 (5 needs T
+    // quadratic in p): separable Hamiltonians only (methods/dense_output.hpp).
+    std::vector<double> output_times;
+    int output_order = 3;
     std::ostream* trajectory = nullptr;
     int timing_repeats = 1;               // wall-time measurements of unobserved runs (0: no timing)
     double min_measurement = 2e-3;        // each measurement repeats the run until it lasts this long [s]

@@ -62,7 +62,7 @@ std::string as_text(const scene& s, const outcome& o) {
     l << std::left << std::setw(24) << o.method->name;
     if (!r.stable) {
         l << "UNSTABLE: " << r.failure;
-        if (s.output.trajectory_every) l << " (the trajectory file ends there with a '# truncated' line)";
+        if (s.output.writes_trajectory()) l << " (the trajectory file ends there with a '# truncated' line)";
         return l.str();
     }
     l << std::right << std::setw(10) << r.steps << " steps" << std::setw(12) << r.force_evaluations
@@ -187,12 +187,14 @@ outcome run_one(const scene& s, const problem& p, const planned_run& planned, co
         };
     std::unique_ptr<atomic_file> trajectory;
     const std::string header = csv_line(trajectory_header(p.degrees_of_freedom));
-    if (s.output.trajectory_every) {
+    if (s.output.writes_trajectory()) {
         trajectory = std::make_unique<atomic_file>(dir / (file_name_part(s.name) + "_" + file_name_part(m.name) +
                                                           "_trajectory.csv"));
         trajectory->stream() << header << std::setprecision(17);
         rq.trajectory = &trajectory->stream();
         rq.trajectory_every = s.output.trajectory_every;
+        rq.output_times = s.output.times;
+        rq.output_order = p.form.quadratic_kinetic ? 5 : 3;
     }
     std::optional<checkpointed_method> checkpoints;
     if (s.checkpoint.every_steps) {
@@ -232,12 +234,16 @@ void run_scene(const scene& s, bool json, std::ostream& out, double max_steps, b
     const problem p = problem_of(s);
     const run_plan plan = plan_runs(s, p, sweep_use::first);
     check_run_size(plan, max_steps);
+    if (!s.output.times.empty() && !p.form.separable_hamiltonian)
+        throw scene_error(s.source + ": output.times: " + s.system +
+                          " is not a separable Hamiltonian T(p) + V(q), whose velocity and force the interpolant "
+                          "between steps needs; use output.trajectory_every");
     if (resume && !s.checkpoint.every_steps)
         throw scene_error(s.source + ": --resume, but the scene has no checkpoint = {every_steps = N, file = \"...\"}");
     const reference_state ref = make_reference(s, p, plan);
     // Files, when the scene asks for any, are staged and moved into place together.
     std::optional<output_set> outputs;
-    if (s.output.trajectory_every) outputs.emplace(s.output.directory);
+    if (s.output.writes_trajectory()) outputs.emplace(s.output.directory);
     const fs::path dir = outputs ? outputs->staging() : fs::path(s.output.directory);
     std::vector<outcome> outcomes;
     const progress bar;  // long runs show how far they are on a terminal

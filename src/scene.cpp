@@ -143,10 +143,62 @@ void read_methods(const reader& r, const toml::table& doc, scene& s) {
 }
 
 // [output]
-void read_output(const reader& r, const toml::node& o, scene& s) {
+// output.times = [t1, t2, ...] | {from, to, count} (evenly spaced, both ends
+// included): finite, sorted (ties allowed), inside the file's [t0, t_end];
+// under --quick the times past its t_end are left out.
+std::vector<double> read_output_times(const reader& r, const toml::node& n, const scene& s, double file_t_end) {
+    std::vector<double> times;
+    const auto check_count = [&](const toml::node& where, double count) {
+        if (count > double(max_output_times))
+            r.fail(where, "'output.times' asks for " + format_number(count, 6) + " rows; expected at most " +
+                              format_number(double(max_output_times), 6));
+    };
+    if (const toml::array* a = n.as_array()) {
+        check_count(n, double(a->size()));
+        for (const auto& e : *a) {
+            const double t = r.number(e, "output.times");
+            if (!std::isfinite(t) || t < s.t0 || t > file_t_end)
+                r.fail(e, "output time " + shortest(t) + " is outside the run; expected a time in [t0, t_end] = [" +
+                              shortest(s.t0) + ", " + shortest(file_t_end) + "]");
+            if (!times.empty() && t < times.back())
+                r.fail(e, "output time " + shortest(t) + " comes after " + shortest(times.back()) +
+                              "; expected the times sorted, earliest first");
+            times.push_back(t);
+        }
+        if (times.empty()) r.fail(n, "'output.times' is an empty array; expected at least one time");
+    } else if (const toml::table* t = n.as_table()) {
+        r.only_keys(*t, {"from", "to", "count"}, "'output.times'");
+        const toml::node* from = t->get("from");
+        const toml::node* to = t->get("to");
+        const toml::node* count = t->get("count");
+        if (!from || !to || !count) r.fail(n, "'output.times' needs from, to and count");
+        const double a = r.number(*from, "output.times.from"), b = r.number(*to, "output.times.to");
+        for (const auto& [node, v] : {std::pair{from, a}, std::pair{to, b}})
+            if (!std::isfinite(v) || v < s.t0 || v > file_t_end)
+                r.fail(*node, "output time " + shortest(v) + " is outside the run; expected a time in [t0, t_end] = [" +
+                                  shortest(s.t0) + ", " + shortest(file_t_end) + "]");
+        if (b < a) r.fail(*to, "'output.times.to' = " + shortest(b) + " is before from = " + shortest(a) +
+                                   "; expected to >= from");
+        const auto c = count->value<std::int64_t>();
+        if (!c || !count->is_integer() || *c < 1)
+            r.fail(*count, "'output.times.count' must be an integer >= 1");
+        check_count(*count, double(*c));
+        if (*c > 1 && a == b) r.fail(*count, "'output.times' from = to = " + shortest(a) + " with count = " +
+                                                 std::to_string(*c) + "; expected count = 1 for a single time");
+        times.reserve(std::size_t(*c));
+        for (std::int64_t i = 0; i < *c; ++i)  // the last one is `to` itself, not a rounded sum
+            times.push_back(i + 1 == *c ? b : a + (b - a) * (double(i) / double(*c - 1)));
+    } else {
+        r.fail(n, "'output.times' must be an array of times or {from, to, count}");
+    }
+    std::erase_if(times, [&](double t) { return t > s.t_end; });  // --quick's shorter span
+    return times;
+}
+
+void read_output(const reader& r, const toml::node& o, scene& s, double file_t_end) {
     const toml::table* t = o.as_table();
     if (!t) r.fail(o, "'output' must be a table");
-    r.only_keys(*t, {"energy_error", "trajectory_every", "final_state", "loop_area", "directory"}, "[output]");
+    r.only_keys(*t, {"energy_error", "trajectory_every", "times", "final_state", "loop_area", "directory"}, "[output]");
     if (auto* n = t->get("energy_error")) s.output.energy_error = r.boolean(*n, "output.energy_error");
     if (auto* n = t->get("final_state")) s.output.final_state = r.boolean(*n, "output.final_state");
     if (auto* n = t->get("loop_area")) s.output.loop_area = r.boolean(*n, "output.loop_area");
@@ -157,6 +209,12 @@ void read_output(const reader& r, const toml::node& o, scene& s) {
             r.fail(*n, "'output.trajectory_every' must be an integer >= 1 (every k-th step; leave it out for no "
                        "trajectory)");
         s.output.trajectory_every = std::size_t(*k);
+    }
+    if (auto* n = t->get("times")) {
+        if (s.output.trajectory_every)
+            r.fail(*n, "'output.times' and 'output.trajectory_every' both choose the trajectory's rows; expected one "
+                       "of them");
+        s.output.times = read_output_times(r, *n, s, file_t_end);
     }
 }
 
@@ -222,7 +280,8 @@ scene parse_scene(const std::string& text, const std::string& source, bool quick
         r.fail(*t_end, "t_end = " + shortest(s.t_end) + " is not after t0 = " + shortest(s.t0) +
                            "; expected t_end > t0");
 
-    if (const toml::node* o = doc.get("output")) read_output(r, *o, s);
+    const double file_t_end = doc.get("t_end") ? r.number(*doc.get("t_end"), "t_end") : s.t_end;
+    if (const toml::node* o = doc.get("output")) read_output(r, *o, s, file_t_end);
     const toml::array& methods = *doc.get("methods")->as_array();
     if (const toml::node* c = doc.get("checkpoint")) read_checkpoint(r, *c, methods, s);
     if (const toml::node* e = doc.get("ensemble")) s.ensemble = read_ensemble(r, *e, s, *find_system(s.system), methods);

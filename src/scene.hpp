@@ -22,10 +22,17 @@ namespace sympl::app {
 struct output_spec {
     bool energy_error = true;          // max relative energy error (and its series in `run`)
     std::size_t trajectory_every = 0;  // 0: no trajectory file
+    // `times = [...]` or `{from, to, count}`: trajectory rows at these times,
+    // read off each step's Hermite interpolant (methods/dense_output.hpp); the
+    // steps are the run's own. Sorted, inside [t0, t_end]; --quick drops those
+    // past its shorter t_end.
+    std::vector<double> times;
     bool final_state = false;
     bool loop_area = false;            // area of a loop of initial conditions around x0, plane 0
     std::string directory = ".";       // where `sympl run` writes its files
+    bool writes_trajectory() const { return trajectory_every != 0 || !times.empty(); }
 };
+inline constexpr std::size_t max_output_times = 10'000'000;
 
 // A method as a scene lists it: a name, or {name = ..., dt = ..., tolerances = ...}
 // with a sweep of its own (a LogH method's fictitious step differs from dt).

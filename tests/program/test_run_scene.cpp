@@ -1,8 +1,11 @@
 // `sympl run`: one scene, the outputs it asks for and nothing else, JSON that a parser reads.
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <sstream>
 #include <string>
 
@@ -142,6 +145,127 @@ TEST_CASE("run: a sweep runs its first (largest) value, says so, and the impossi
                           "one.toml"),
               false, single);
     CHECK(single.str().find("a sweep") == std::string::npos);
+}
+
+namespace {
+// The rows (t, q, p) of `sympl run` of sofroniou_spaletta_10 (order 10: its
+// own error is far below the interpolation's) on `system` at step dt to
+// t = 10, with the [output] line `rows`.
+std::vector<std::vector<double>> rows_of(const std::string& system, double dt, const std::string& rows) {
+    const fs::path dir = scratch_directory("sympl_test_run_times");
+    fs::remove_all(dir);
+    const scene s = parse_scene("name = \"r\"\nsystem = \"" + system + "\"\nmethods = [\"sofroniou_spaletta_10\"]\n" +
+                                    "dt = " + std::to_string(dt) + "\nt_end = 10\n[output]\n" + rows +
+                                    "\ndirectory = \"" + dir.string() + "\"\n",
+                                "r.toml");
+    std::ostringstream out;
+    run_scene(s, false, out);
+    std::vector<std::vector<double>> numbers;
+    const auto csv = read_csv(dir / "r_sofroniou_spaletta_10_trajectory.csv");
+    for (std::size_t i = 1; i < csv.size(); ++i) {
+        numbers.emplace_back();
+        for (const std::string& field : csv[i]) numbers.back().push_back(std::stod(field));
+    }
+    fs::remove_all(dir);
+    return numbers;
+}
+
+// Largest deviation of the rows at times 0.013 + 0.011 i (inside the steps of
+// dt) from a run at dt = 0.001 whose step ends hold those times, in q and in p.
+std::pair<double, double> interpolation_error(const std::string& system, double dt) {
+    const auto rows = rows_of(system, dt, "times = {from = 0.013, to = 9.913, count = 901}");
+    const auto reference = rows_of(system, 0.001, "trajectory_every = 1");
+    REQUIRE(rows.size() == 901);
+    REQUIRE(reference.size() == 10001);
+    const std::size_t n = (rows[0].size() - 1) / 2;
+    double q = 0, p = 0;
+    for (const auto& row : rows) {
+        const auto& exact = reference[std::size_t(std::lround(row[0] / 0.001))];
+        REQUIRE(std::fabs(exact[0] - row[0]) < 1e-12);
+        for (std::size_t k = 1; k <= n; ++k) q = std::max(q, std::fabs(row[k] - exact[k]));
+        for (std::size_t k = n + 1; k <= 2 * n; ++k) p = std::max(p, std::fabs(row[k] - exact[k]));
+    }
+    return {q, p};
+}
+}  // namespace
+
+TEST_CASE("run: output times are read off each step's interpolant at its order, the run stepping as without them") {
+    // T = p^2/2: the quintic Hermite in q, O(dt^6), and its derivative in p, O(dt^5).
+    const auto [q1, p1] = interpolation_error("pendulum", 0.2);
+    const auto [q2, p2] = interpolation_error("pendulum", 0.1);
+    MESSAGE("pendulum, dt 0.2 -> 0.1: q error " << q1 << " -> " << q2 << ", p error " << p1 << " -> " << p2);
+    CHECK(std::fabs(std::log2(q1 / q2) - 6) < 0.15);
+    CHECK(std::fabs(std::log2(p1 / p2) - 5) < 0.15);
+    // T not quadratic: the cubic Hermite in both, O(dt^4).
+    const auto [rq1, rp1] = interpolation_error("relativistic_pendulum", 0.2);
+    const auto [rq2, rp2] = interpolation_error("relativistic_pendulum", 0.1);
+    MESSAGE("relativistic pendulum: q error " << rq1 << " -> " << rq2 << ", p error " << rp1 << " -> " << rp2);
+    CHECK(std::fabs(std::log2(rq1 / rq2) - 4) < 0.15);
+    CHECK(std::fabs(std::log2(rp1 / rp2) - 4) < 0.15);
+
+    // The run itself: the same final state and energy error, to the last bit,
+    // as without output; a time on a step end is that step's state itself.
+    const auto json_of = [](const std::string& output) {
+        const scene s = parse_scene("system = \"kepler\"\nmethods = [\"blanes_moan_s6\"]\ndt = 0.01\nt_end = 3\n"
+                                    "[output]\nfinal_state = true\ndirectory = \"" +
+                                        scratch_directory("sympl_test_run_times_kepler").string() + "\"\n" + output,
+                                    "k.toml");
+        std::ostringstream out;
+        run_scene(s, true, out);
+        return nlohmann::json::parse(out.str())[0];
+    };
+    const auto plain = json_of("");
+    const auto timed = json_of("times = {from = 0.0003, to = 2.9997, count = 577}");
+    CHECK(timed["final_state"] == plain["final_state"]);
+    CHECK(timed["max_energy_error"] == plain["max_energy_error"]);
+    CHECK(timed["steps"] == plain["steps"]);
+    CHECK(timed["force_evaluations"] == plain["force_evaluations"]);
+    fs::remove_all(scratch_directory("sympl_test_run_times_kepler"));
+    const auto on_ends = rows_of("pendulum", 0.25, "times = [0, 0.25, 5, 10]");
+    const auto every = rows_of("pendulum", 0.25, "trajectory_every = 20");
+    REQUIRE(on_ends.size() == 4);
+    REQUIRE(every.size() == 3);
+    CHECK(on_ends[0] == every[0]);
+    CHECK(on_ends[2] == every[1]);
+    CHECK(on_ends[3] == every[2]);
+}
+
+TEST_CASE("run: output times after a resume from a checkpoint: the rows of the uninterrupted run, byte for byte") {
+    const scene s = parse_scene("system = \"kepler\"\nparameters = {eccentricity = 0.7}\nmethods = [\"blanes_moan_s6\"]\n"
+                                "dt = 0.01\nt_end = 5\n[output]\ntimes = {from = 0, to = 5, count = 201}\n",
+                                "resume.toml");
+    const problem p = problem_of(s);
+    run_request rq;
+    rq.dt = 0.01;
+    rq.energy = true;
+    rq.timing_repeats = 0;
+    rq.output_times = s.output.times;
+    rq.output_order = 5;
+    std::ostringstream whole;
+    whole << std::setprecision(17);
+    rq.trajectory = &whole;
+    std::vector<checkpoint_record> saved;
+    rq.checkpoint.every_steps = 37;  // between output times (every 0.025) and, at t = 1.85, on one
+    rq.checkpoint.save = [&](checkpoint_record& r) {
+        r.trajectory_bytes = whole.str().size();
+        saved.push_back(r);
+    };
+    const run_result a = p.run(s.methods[0], rq, s.t0, s.t_end, p.x0);
+    REQUIRE(a.stable);
+    REQUIRE(saved.size() == 13);
+    for (const checkpoint_record& from : {saved[2], saved[4], saved[12]}) {
+        std::ostringstream resumed;
+        resumed << std::setprecision(17) << whole.str().substr(0, from.trajectory_bytes);
+        run_request again = rq;
+        again.trajectory = &resumed;
+        again.checkpoint.resume = &from;
+        again.checkpoint.save = [](checkpoint_record&) {};
+        const run_result b = p.run(s.methods[0], again, s.t0, s.t_end, p.x0);
+        CHECK(b.final_state == a.final_state);
+        CHECK(resumed.str() == whole.str());
+    }
+    const std::string rows = whole.str();
+    CHECK(std::count(rows.begin(), rows.end(), '\n') == 201);
 }
 
 }  // namespace test_program_test_run_scene

@@ -144,6 +144,51 @@ TEST_CASE("scene: files too large are refused before they are read, NUL bytes na
     std::remove(path.c_str());
 }
 
+TEST_CASE("scene: output times as a list or {from, to, count}, sorted, inside the span, or refused where they are") {
+    const auto with_times = [](const std::string& times) {
+        std::string text = good;
+        const std::string from = "trajectory_every = 10";
+        text.replace(text.find(from), from.size(), "times = " + times);
+        return text;
+    };
+    const scene listed = parse_scene(with_times("[0, 0.5, 0.5, 6.283185307179586]"), "scene.toml");
+    CHECK(listed.output.times == std::vector<double>{0, 0.5, 0.5, 6.283185307179586});
+    CHECK(listed.output.trajectory_every == 0);
+    CHECK(listed.output.writes_trajectory());
+    const scene spaced = parse_scene(with_times("{from = 1, to = 2, count = 5}"), "scene.toml");
+    CHECK(spaced.output.times == std::vector<double>{1, 1.25, 1.5, 1.75, 2});
+    CHECK(parse_scene(with_times("{from = 3, to = 3, count = 1}"), "scene.toml").output.times ==
+          std::vector<double>{3});
+    // --quick's shorter span leaves out the later times, and only those.
+    const scene quick = parse_scene(with_times("[1, 2, 4, 6]") + "[quick]\nt_end = 3\n", "scene.toml", true);
+    CHECK(quick.output.times == std::vector<double>{1, 2});
+
+    CHECK(error_of(with_times("[0, 2, 1]")) ==
+          "scene.toml:8:16: output time 1 comes after 2; expected the times sorted, earliest first");
+    CHECK(error_of(with_times("[0, 7]")) == "scene.toml:8:13: output time 7 is outside the run; expected a time in "
+                                            "[t0, t_end] = [0, 6.283185307179586]");
+    CHECK(error_of(with_times("[-1]")).rfind("scene.toml:8:10: output time -1 is outside the run", 0) == 0);
+    CHECK(error_of(with_times("[nan]")).rfind("scene.toml:8:10: output time nan is outside the run", 0) == 0);
+    CHECK(error_of(with_times("[]")) == "scene.toml:8:9: 'output.times' is an empty array; expected at least one time");
+    CHECK(error_of(with_times("[\"later\"]")) == "scene.toml:8:10: 'output.times' must be a number");
+    CHECK(error_of(with_times("5")) ==
+          "scene.toml:8:9: 'output.times' must be an array of times or {from, to, count}");
+    CHECK(error_of(with_times("{from = 2, to = 1, count = 3}")) ==
+          "scene.toml:8:25: 'output.times.to' = 1 is before from = 2; expected to >= from");
+    CHECK(error_of(with_times("{from = 0, to = 1, count = 0}")) ==
+          "scene.toml:8:36: 'output.times.count' must be an integer >= 1");
+    CHECK(error_of(with_times("{from = 0, to = 1, count = 1.5}")) ==
+          "scene.toml:8:36: 'output.times.count' must be an integer >= 1");
+    CHECK(error_of(with_times("{from = 0, to = 1, count = 20000000}")) ==
+          "scene.toml:8:36: 'output.times' asks for 2e+07 rows; expected at most 1e+07");
+    CHECK(error_of(with_times("{from = 1, to = 1, count = 2}")) ==
+          "scene.toml:8:36: 'output.times' from = to = 1 with count = 2; expected count = 1 for a single time");
+    CHECK(error_of(with_times("{from = 0, to = 1}")) == "scene.toml:8:9: 'output.times' needs from, to and count");
+    CHECK(error_of(with_times("[1]\ntrajectory_every = 3")) ==
+          "scene.toml:8:9: 'output.times' and 'output.trajectory_every' both choose the trajectory's rows; expected "
+          "one of them");
+}
+
 TEST_CASE("scene: runs beyond the step limit are refused up front with the figures, and the limit can be raised") {
     const scene s = parse_scene("system = \"harmonic_oscillator\"\nmethods = [\"leapfrog_kdk\", "
                                 "\"extrapolated(leapfrog_kdk, 4)\"]\ndt = [0.1, 0.001]\nt_end = 1000\n",
