@@ -11,7 +11,11 @@
 //   (e) the symplectic corrector (Wisdom, Holman & Touma 1996): its weights
 //       solve their conditions; the leapfrog's energy error goes from eps h^2
 //       to eps h^(2K+2) + eps^2 h^2 (slopes in h and in the planet masses);
-//       chunks, a new dt, its cost; non-leapfrog tables refused.
+//       chunks, a new dt, its cost; non-leapfrog tables refused;
+//   (f) the composition kernel (Wisdom, Holman & Touma 1996; Rein, Tamayo &
+//       Brown 2019): with corrector 17 the eps^2 h^2 term becomes eps^2 h^4
+//       (slopes in h and in the planet masses); its sub-steps, its cost,
+//       tables refused.
 // Also: steps(n) against n calls of step(), the counters, and the drivers.
 #include <doctest/doctest.h>
 
@@ -19,6 +23,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -91,12 +96,14 @@ planetary_system outer_solar_system(double scale = 1) {
     return {std::vector<double>(sys.mass.begin(), sys.mass.end()), sys.G, State(x.q, x.p)};
 }
 
-// The largest relative energy error over n steps of h, checked every step.
+// The largest relative energy error over n steps of h, checked every step
+// (with a corrector, every step's output is corrected, the run going on uncorrected).
 struct energy_run {
     double worst = 0, first_half = 0, second_half = 0;
 };
-energy_run energy_errors(const planetary_system& s, const table& t, double h, std::size_t n) {
-    wisdom_holman_stepper<State> wh(s.mass, s.G, t);
+energy_run energy_errors(const planetary_system& s, const table& t, double h, std::size_t n,
+                         wisdom_holman_options options = {}) {
+    wisdom_holman_stepper<State> wh(s.mass, s.G, t, options);
     State x = s.start;
     const long double e0 = nbody_energy(s.mass, s.G, x);
     energy_run r;
@@ -334,15 +341,7 @@ TEST_CASE("wisdom_holman: the corrector takes the leapfrog's energy error from e
     for (const std::string name : {"leapfrog_kdk", "leapfrog_dkd"}) {
         const table& lf = method(name);
         const auto corrected = [&](const planetary_system& s, int order, double h) {
-            wisdom_holman_stepper<State> wh(s.mass, s.G, lf, {order});
-            State x = s.start;
-            const long double e0 = nbody_energy(s.mass, s.G, x);
-            double worst = 0;
-            for (std::size_t k = 0, n = std::size_t(std::lround(span / h)); k < n; ++k) {
-                wh.step(x, h);  // every step's output corrected, the run going on uncorrected
-                worst = std::max(worst, double(std::fabs((nbody_energy(s.mass, s.G, x) - e0) / e0)));
-            }
-            return worst;
+            return energy_errors(s, lf, h, std::size_t(std::lround(span / h)), {order}).worst;
         };
         SUBCASE("order in h") {
             for (int order : {3, 5}) {
@@ -439,6 +438,105 @@ TEST_CASE("wisdom_holman: the corrector in and out: chunks, a new dt, the cost, 
                          invalid_argument);
     CHECK_THROWS_WITH_AS(wisdom_holman_stepper<State>(s.mass, s.G, method("leapfrog_kdk"), {4}),
                          doctest::Contains("order 4; expected 3, 5, 7, 9, 11 or 17"), invalid_argument);
+}
+
+// The composition kernel's sub-steps (kernel_substeps): in total one kick and
+// no drift; every side kick cancelled by one of opposite weight at the same
+// Kepler phase (so to first order in the interaction the kernel is kick(h)
+// and the leapfrog's corrector still fits); 2ab = 1/24, the weight of the
+// commutator that cancels the corrected leapfrog's -h^2/24 [B,[A,B]].
+TEST_CASE("wisdom_holman: the composition kernel's sub-steps") {
+    const std::vector<substep> ops = kernel_substeps(wh_kernel::composition);
+    long double time = 0, kicks = 0;
+    std::vector<std::pair<long double, long double>> at;  // (Kepler phase, kick weight)
+    for (const substep& o : ops) {
+        if (o.kind == substep::drift) time += o.weight;
+        else kicks += o.weight, at.emplace_back(time, o.weight);
+    }
+    CHECK(time == 0);
+    CHECK(kicks == 1);
+    for (const auto& [t, w] : at) {
+        long double sum = 0;
+        for (const auto& [u, v] : at) sum += (u == t ? v : 0);
+        CHECK(sum == (t == 0 ? 1 : 0));
+    }
+    CHECK(std::fabs(2 * composition_kernel_drift * composition_kernel_kick - 1.0L / 24) < 1e-18L);
+    CHECK(kernel_substeps(wh_kernel::kick).size() == 1);
+}
+
+// Wisdom, Holman & Touma 1996; Rein, Tamayo & Brown 2019: corrector and
+// kernel leave O(eps h^(2K+2) + eps^2 h^4), the corrector alone O(eps^2 h^2).
+// eps = 1e-3 and h from 1/20 to 1/40 of the inner period with corrector 17:
+// the eps h^18 term is far below both (the corrector-17 test above), so the
+// slopes are those of the eps^2 terms.
+TEST_CASE("wisdom_holman: the composition kernel takes the corrected error from eps^2 h^2 to eps^2 h^4") {
+    const double span = 20 * two_pi;
+    const table& dkd = method("leapfrog_dkd");
+    const auto worst = [&](const planetary_system& s, wisdom_holman_options o, double h) {
+        return energy_errors(s, dkd, h, std::size_t(std::lround(span / h)), o).worst;
+    };
+    const wisdom_holman_options plain{.corrector_order = 17}, kernel{.corrector_order = 17, .kernel = wh_kernel::composition};
+    std::vector<double> hs, with, without;
+    for (double k : {20.0, 28.0, 40.0}) {
+        hs.push_back(two_pi / k);
+        with.push_back(worst(two_planets(1e-3), kernel, hs.back()));
+        without.push_back(worst(two_planets(1e-3), plain, hs.back()));
+    }
+    const double in_h = slope(hs, with), in_h_without = slope(hs, without);
+    std::vector<double> epsilons, errors_eps;
+    for (double e : {1e-4, 3.16e-4, 1e-3}) {
+        epsilons.push_back(e);
+        errors_eps.push_back(worst(two_planets(e), kernel, two_pi / 40));
+    }
+    const double in_eps = slope(epsilons, errors_eps);
+    MESSAGE("corrector 17, eps = 1e-3, h = 2 pi / 20, 28, 40: with the composition kernel " << with[0] << ", " << with[1]
+            << ", " << with[2] << ": slope " << in_h << " (theory 4); without " << without[0] << ", " << without[1]
+            << ", " << without[2] << ": slope " << in_h_without << " (theory 2); cut by " << without[2] / with[2]
+            << " at h = 2 pi / 40");
+    MESSAGE("corrector 17 and kernel, h = 2 pi / 40: " << errors_eps[0] << ", " << errors_eps[1] << ", " << errors_eps[2]
+            << " at eps = 1e-4, 3.16e-4, 1e-3: slope " << in_eps << " (theory 2)");
+    CHECK(std::fabs(in_h - 4) < 0.15);
+    CHECK(std::fabs(in_h_without - 2) < 0.15);
+    CHECK(std::fabs(in_eps - 2) < 0.15);
+    // The cut is c / h^2 with c the ratio of the two error constants, O(1):
+    // at h^2 = 0.025, at least 10.
+    CHECK(without[2] / with[2] > 10);
+}
+
+TEST_CASE("wisdom_holman: the composition kernel in and out: first order, steps, cost, refused tables") {
+    const double h = two_pi / 20;
+    const table& dkd = method("leapfrog_dkd");
+    const wisdom_holman_options kernel{.kernel = wh_kernel::composition};
+    // To first order in the interaction the kernel is the kick: without a
+    // corrector the error is the leapfrog's eps h^2, changed at O(eps^2 h^2),
+    // a part in eps of it.
+    const planetary_system light = two_planets(1e-4);
+    const std::size_t n = 400;
+    const double leapfrog = energy_errors(light, dkd, h, n).worst;
+    const double with_kernel = energy_errors(light, dkd, h, n, kernel).worst;
+    MESSAGE("eps = 1e-4, h = 2 pi / 20, no corrector: " << leapfrog << " (leapfrog), " << with_kernel << " (kernel)");
+    CHECK(std::fabs(with_kernel / leapfrog - 1) < 100 * 1e-4);
+    // steps(n) against n calls of step(); 5 Kepler drifts and 5 interaction
+    // evaluations a step (the first and last drifts joined across steps).
+    const planetary_system s = two_planets(1e-3);
+    wisdom_holman_stepper<State> one(s.mass, s.G, dkd, kernel), many(s.mass, s.G, dkd, kernel);
+    State x = s.start, y = s.start;
+    for (int k = 0; k < 100; ++k) one.step(x, h);
+    many.steps(y, h, 100);
+    CHECK(max_difference(x, y) < 1e3 * eps * std::max(x.q.cwiseAbs().maxCoeff(), 1.0));
+    CHECK(many.kepler_drifts() == 5 * 100 + 1);
+    CHECK(many.interaction_evaluations() == 5 * 100);
+    // Tables other than the drift-kick-drift leapfrog.
+    CHECK_NOTHROW(wisdom_holman_stepper<State>(s.mass, s.G, method("saba_1"), kernel));
+    CHECK_THROWS_WITH_AS(wisdom_holman_stepper<State>(s.mass, s.G, method("leapfrog_kdk"),
+                                                      {.corrector_order = 11, .kernel = wh_kernel::composition}),
+                         doctest::Contains("kernel composition with table 'leapfrog_kdk'; expected the drift-kick-drift leapfrog"),
+                         invalid_argument);
+    CHECK_THROWS_WITH_AS(wisdom_holman_stepper<State>(s.mass, s.G, method("saba_2"), kernel),
+                         doctest::Contains("kernel composition with table 'saba_2'; expected the drift-kick-drift leapfrog"),
+                         invalid_argument);
+    CHECK_THROWS_WITH_AS(wisdom_holman_stepper<State>(s.mass, s.G, dkd, {.kernel = wh_kernel(7)}),
+                         doctest::Contains("kernel unknown (7); expected kick or composition"), invalid_argument);
 }
 
 TEST_CASE("wisdom_holman: bad input names the body") {
