@@ -536,7 +536,7 @@ TEST_CASE("wisdom_holman: the composition kernel in and out: first order, steps,
                          doctest::Contains("kernel composition with table 'saba_2'; expected the drift-kick-drift leapfrog"),
                          invalid_argument);
     CHECK_THROWS_WITH_AS(wisdom_holman_stepper<State>(s.mass, s.G, dkd, {.kernel = wh_kernel(7)}),
-                         doctest::Contains("kernel unknown (7); expected kick or composition"), invalid_argument);
+                         doctest::Contains("wisdom_holman_stepper: kernel unknown (7); expected kick or composition"), invalid_argument);
 }
 
 TEST_CASE("wisdom_holman: bad input names the body") {

@@ -320,6 +320,8 @@ public:
         if (options_.kernel != wh_kernel::kick) {
             // The kernel replaces the middle kick of drift(h/2) kick(h) drift(h/2).
             const std::string kernel = "kernel " + kernel_name(options_.kernel);
+            if (options_.kernel != wh_kernel::composition)
+                throw invalid_argument(who + kernel + "; expected kick or composition");
             if (!is(substep::drift))
                 throw invalid_argument(who + kernel + " with table '" + table_.name() +
                                        "'; expected the drift-kick-drift leapfrog with weights 1/2, 1, 1/2 "
