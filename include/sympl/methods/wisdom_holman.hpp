@@ -273,6 +273,62 @@ struct wisdom_holman_options {
     wh_kernel kernel = wh_kernel::kick;
 };
 
+// What one Wisdom-Holman step of `method` with `options` runs: its sub-steps
+// (the kernel in place of the leapfrog's kick) and its corrector's weights.
+// An invalid_argument, starting with `who`, when they do not fit: a
+// force-gradient table, a corrector or kernel on a table that is not the
+// leapfrog (the kernel: drift-kick-drift only), an order or kernel unknown.
+// The stepper's constructor and the program (before a run) both ask it.
+struct wisdom_holman_plan {
+    std::vector<substep> substeps;
+    std::vector<coefficient> corrector;  // c_1..c_K, empty without a corrector
+};
+
+inline wisdom_holman_plan plan_wisdom_holman(const table& method, const wisdom_holman_options& options,
+                                             const std::string& who) {
+    const std::string prefix = who + ": ";
+    if (method.has_force_gradient())
+        throw invalid_argument(prefix + "table '" + method.name() +
+                               "' has force-gradient kicks; expected a table of plain kicks and drifts");
+    wisdom_holman_plan plan{method.substeps(), {}};
+    const auto& ops = plan.substeps;
+    const auto is = [&](substep::kind_t outer) {
+        return ops.size() == 3 && ops[0].kind == outer && ops[0].weight == 0.5L && ops[1].weight == 1 &&
+               ops[2].weight == 0.5L;
+    };
+    if (options.corrector_order != 0) {
+        // The corrector undoes the leapfrog's own error terms (see the
+        // stepper's header comment): it is wrong for any other table.
+        if (!is(substep::kick) && !is(substep::drift))
+            throw invalid_argument(prefix + "symplectic corrector of order " + std::to_string(options.corrector_order) +
+                                   " with table '" + method.name() +
+                                   "'; expected the leapfrog, kick-drift-kick or drift-kick-drift with weights "
+                                   "1/2, 1, 1/2 (leapfrog_kdk, leapfrog_dkd)");
+        try {
+            plan.corrector = corrector_weights(options.corrector_order, is(substep::kick)
+                                                                            ? leapfrog_kernel::kick_drift_kick
+                                                                            : leapfrog_kernel::drift_kick_drift);
+        } catch (const invalid_argument& e) {
+            throw invalid_argument(prefix + e.what());
+        }
+    }
+    if (options.kernel != wh_kernel::kick) {
+        // The kernel replaces the middle kick of drift(h/2) kick(h) drift(h/2).
+        const std::string kernel = "kernel " + kernel_name(options.kernel);
+        if (options.kernel != wh_kernel::composition)
+            throw invalid_argument(prefix + kernel + "; expected kick or composition");
+        if (!is(substep::drift))
+            throw invalid_argument(prefix + kernel + " with table '" + method.name() +
+                                   "'; expected the drift-kick-drift leapfrog with weights 1/2, 1, 1/2 "
+                                   "(leapfrog_dkd, saba_1)");
+        std::vector<substep> with_kernel{{substep::drift, 0.5L}};
+        for (const substep& o : kernel_substeps(options.kernel)) with_kernel.push_back(o);
+        with_kernel.push_back({substep::drift, 0.5L});
+        plan.substeps = detail::canonical(with_kernel);  // drift(5/8) ... drift(3/8)
+    }
+    return plan;
+}
+
 template <class State>
     requires phase_space_state<State> && std::is_floating_point_v<typename State::scalar>
 class wisdom_holman_stepper {
@@ -296,41 +352,9 @@ public:
         if (State::dimension != Eigen::Dynamic && std::size_t(State::dimension) != 3 * mass_.size())
             throw invalid_argument(who + std::to_string(mass_.size()) + " masses for a state of fixed dimension " +
                                    std::to_string(State::dimension) + "; expected 3 degrees of freedom per body");
-        if (table_.has_force_gradient())
-            throw invalid_argument(who + "table '" + table_.name() +
-                                   "' has force-gradient kicks; expected a table of plain kicks and drifts");
-        ops_ = table_.substeps();
-        const auto is = [&](substep::kind_t outer) {
-            return ops_.size() == 3 && ops_[0].kind == outer && ops_[0].weight == 0.5L && ops_[1].weight == 1 &&
-                   ops_[2].weight == 0.5L;
-        };
-        if (options_.corrector_order != 0) {
-            // The corrector undoes the leapfrog's own error terms (see the
-            // header): it is wrong for any other table.
-            if (!is(substep::kick) && !is(substep::drift))
-                throw invalid_argument(who + "symplectic corrector of order " +
-                                       std::to_string(options_.corrector_order) + " with table '" + table_.name() +
-                                       "'; expected the leapfrog, kick-drift-kick or drift-kick-drift with weights "
-                                       "1/2, 1, 1/2 (leapfrog_kdk, leapfrog_dkd)");
-            const auto c = corrector_weights(options_.corrector_order, is(substep::kick)
-                                                                           ? leapfrog_kernel::kick_drift_kick
-                                                                           : leapfrog_kernel::drift_kick_drift);
-            for (coefficient w : c) corrector_weights_.push_back(static_cast<scalar>(w));
-        }
-        if (options_.kernel != wh_kernel::kick) {
-            // The kernel replaces the middle kick of drift(h/2) kick(h) drift(h/2).
-            const std::string kernel = "kernel " + kernel_name(options_.kernel);
-            if (options_.kernel != wh_kernel::composition)
-                throw invalid_argument(who + kernel + "; expected kick or composition");
-            if (!is(substep::drift))
-                throw invalid_argument(who + kernel + " with table '" + table_.name() +
-                                       "'; expected the drift-kick-drift leapfrog with weights 1/2, 1, 1/2 "
-                                       "(leapfrog_dkd, saba_1)");
-            std::vector<substep> ops{{substep::drift, 0.5L}};
-            for (const substep& o : kernel_substeps(options_.kernel)) ops.push_back(o);
-            ops.push_back({substep::drift, 0.5L});
-            ops_ = detail::canonical(ops);  // drift(5/8) ... drift(3/8)
-        }
+        const wisdom_holman_plan plan = plan_wisdom_holman(table_, options_, "wisdom_holman_stepper");
+        ops_ = plan.substeps;
+        for (coefficient w : plan.corrector) corrector_weights_.push_back(static_cast<scalar>(w));
         for (const substep& o : ops_) weights_.push_back(static_cast<scalar>(o.weight));
         joined_weight_ = static_cast<scalar>(ops_.back().weight + ops_.front().weight);
         joined_ = ops_.size() > 1 && ops_.front().kind == ops_.back().kind;
