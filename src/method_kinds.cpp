@@ -3,11 +3,13 @@
 
 #include <algorithm>
 #include <charconv>
+#include <set>
 
 #include <sympl/methods/catalog.hpp>
 #include <sympl/core/error.hpp>
 #include <sympl/methods/extended_phase_space.hpp>
 #include <sympl/methods/extrapolation.hpp>
+#include <sympl/methods/wisdom_holman.hpp>
 
 namespace sympl::app {
 
@@ -142,18 +144,48 @@ method_spec on_extended_phase_space(const std::string& name, method_kind kind, s
     return method_spec{name, kind, inner->coefficients};
 }
 
-// wh(<table>): any plain table (the catalog's or the scene's) without
-// force-gradient kicks; its drifts become Kepler flows, its kicks the
-// planets' interaction.
+// wh(<table>[, corrector = K][, kernel = composition]): any plain table (the
+// catalog's or the scene's) without force-gradient kicks; its drifts become
+// Kepler flows, its kicks the planets' interaction. The options are the
+// library's wisdom_holman_options, checked against the table as the stepper
+// checks them (plan_wisdom_holman), so a misfit is refused before any run.
 method_spec wisdom_holman(const std::string& name, const std::map<std::string, table>& inline_tables) {
-    const std::string inner_name = trimmed(name.substr(3, name.size() - 4));
+    const std::string usage = "; expected wh(<a table of kicks and drifts: leapfrog_kdk, saba_2, sbab_3, ...>"
+                              "[, corrector = 3|5|7|9|11|17][, kernel = composition])";
+    std::string inner_name = name.substr(3, name.size() - 4);
+    method_spec m{name, method_kind::wisdom_holman, std::nullopt};
+    // Options from the right, `key = value`; what is left is the table's name
+    // (an inline table's name may itself hold commas).
+    std::set<std::string> seen;
+    for (auto comma = inner_name.rfind(','); comma != std::string::npos; comma = inner_name.rfind(',')) {
+        const std::string option = trimmed(inner_name.substr(comma + 1));
+        const auto equals = option.find('=');
+        const std::string key = trimmed(option.substr(0, equals)), value = equals == std::string::npos ? "" : trimmed(option.substr(equals + 1));
+        if (key != "corrector" && key != "kernel") break;
+        if (equals == std::string::npos || value.empty())
+            throw invalid_argument("method '" + name + "': option '" + option + "' has no value" + usage);
+        if (!seen.insert(key).second) throw invalid_argument("method '" + name + "': '" + key + "' given twice" + usage);
+        if (key == "corrector") {
+            const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), m.corrector_order);
+            if (error != std::errc{} || end != value.data() + value.size() || m.corrector_order < 1)
+                throw invalid_argument("method '" + name + "': corrector = '" + value + "'" + usage);
+        } else if (value == "composition") {
+            m.composition_kernel = true;
+        } else if (value != "kick") {
+            throw invalid_argument("method '" + name + "': kernel = '" + value + "'" + usage);
+        }
+        inner_name = inner_name.substr(0, comma);
+    }
+    inner_name = trimmed(inner_name);
     const auto inner = resolve_method(inner_name, inline_tables);
     if (!inner || inner->kind != method_kind::table || inner->extrapolation_columns || inner->compensated ||
         inner->coefficients->has_force_gradient())
-        throw invalid_argument("method '" + name + "': '" + inner_name +
-                               "' is not a plain table; expected wh(<a table of kicks and drifts: leapfrog_kdk, "
-                               "saba_2, sbab_3, ...>)");
-    return method_spec{name, method_kind::wisdom_holman, inner->coefficients};
+        throw invalid_argument("method '" + name + "': '" + inner_name + "' is not a plain table" + usage);
+    m.coefficients = inner->coefficients;
+    const wisdom_holman_options options{.corrector_order = m.corrector_order,
+                                        .kernel = m.composition_kernel ? wh_kernel::composition : wh_kernel::kick};
+    plan_wisdom_holman(*m.coefficients, options, "method '" + name + "'");  // throws naming the misfit
+    return m;
 }
 }  // namespace
 

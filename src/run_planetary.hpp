@@ -3,7 +3,8 @@
 // run as a Wisdom-Holman splitting (methods/wisdom_holman.hpp), its drifts the
 // exact Kepler flows about the star, its kicks the planets' interaction, in
 // democratic heliocentric coordinates that the stepper keeps between steps
-// (not resumable from a checkpoint, which holds inertial coordinates).
+// (not resumable from a checkpoint, which holds inertial coordinates), with
+// the corrector and kernel the method names (wh(<table>, corrector = K, ...)).
 #include "run_context.hpp"
 
 namespace sympl::app::detail {
@@ -12,7 +13,10 @@ template <>
 struct run_kind<method_kind::wisdom_holman> {
     template <class C>
     static steps_and_forces run(const C& c) {
-        return c.template drive<false>(make_wisdom_holman<typename C::State>(c.sys, *c.m.coefficients));
+        const wisdom_holman_options options{
+            .corrector_order = c.m.corrector_order,
+            .kernel = c.m.composition_kernel ? wh_kernel::composition : wh_kernel::kick};
+        return c.template drive<false>(make_wisdom_holman<typename C::State>(c.sys, *c.m.coefficients, options));
     }
 };
 

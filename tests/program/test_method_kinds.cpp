@@ -179,6 +179,32 @@ TEST_CASE("method kinds: wh(<table>) resolves a plain table and runs only on a p
           "outer_solar_system); this system is not one (use the table itself)");
 }
 
+TEST_CASE("method kinds: wh(<table>, corrector = K, kernel = composition) checks its options as the stepper does") {
+    const auto both = resolve_method("wh(leapfrog_dkd, corrector = 17, kernel = composition)", {});
+    REQUIRE(both);
+    CHECK(both->coefficients->name() == "leapfrog_dkd");
+    CHECK(both->corrector_order == 17);
+    CHECK(both->composition_kernel);
+    const auto plain = resolve_method("wh(saba_2)", {});
+    CHECK(plain->corrector_order == 0);
+    CHECK_FALSE(plain->composition_kernel);
+    CHECK(resolve_method("wh(leapfrog_kdk,corrector=3, kernel = kick)", {})->corrector_order == 3);
+    const auto refused = [](const std::string& name, const std::string& why) {
+        CHECK_THROWS_WITH_AS(resolve_method(name, {}), doctest::Contains(why.c_str()), sympl::invalid_argument);
+    };
+    refused("wh(leapfrog_kdk, kernel = composition)",
+            "method 'wh(leapfrog_kdk, kernel = composition)': kernel composition with table 'leapfrog_kdk'; expected "
+            "the drift-kick-drift leapfrog");
+    refused("wh(saba_2, corrector = 5)", "symplectic corrector of order 5 with table 'saba_2'; expected the leapfrog");
+    refused("wh(leapfrog_kdk, corrector = 4)", "order 4; expected 3, 5, 7, 9, 11 or 17");
+    refused("wh(leapfrog_kdk, corrector = 3x)", "corrector = '3x'; expected wh(<a table");
+    refused("wh(leapfrog_kdk, corrector = -3)", "corrector = '-3'; expected wh(<a table");
+    refused("wh(leapfrog_dkd, kernel = lazy)", "kernel = 'lazy'; expected wh(<a table");
+    refused("wh(leapfrog_kdk, corrector)", "option 'corrector' has no value");
+    refused("wh(leapfrog_kdk, corrector = 3, corrector = 5)", "'corrector' given twice");
+    refused("wh(leapfrog_kdk, order = 3)", "'leapfrog_kdk, order = 3' is not a plain table");
+}
+
 // Wisdom-Holman's error is O(eps h^2) with eps ~ 1e-3 the planets' mass
 // relative to the Sun's, the T + V leapfrog's O(h^2): the same step, an error
 // smaller by about 1/eps; and order 2 in h (Wisdom & Holman 1991).
@@ -199,6 +225,18 @@ TEST_CASE("method kinds: wh(leapfrog_kdk) on the outer solar system, order 2 and
     const double coarse = error("wh(leapfrog_kdk)", 200), fine = error("wh(leapfrog_kdk)", 100);
     CHECK(std::log2(coarse / fine) == doctest::Approx(2).epsilon(0.15 / 2));
     CHECK(error("leapfrog_kdk", 100) > 100 * fine);
+    // The scene's options reach the stepper: the corrector takes the O(eps h^2)
+    // off the output, the kernel then the O(eps^2 h^2): what is left,
+    // O(eps^2 h^4), is below the plain leapfrog's error by more than 1/eps
+    // (about 1e3, Jupiter's mass relative to the Sun's) at h omega < 1.
+    const double plain = error("wh(leapfrog_dkd)", 200);
+    const double corrected = error("wh(leapfrog_dkd, corrector = 17)", 200);
+    const double kernel = error("wh(leapfrog_dkd, corrector = 17, kernel = composition)", 200);
+    const double kernel_half = error("wh(leapfrog_dkd, corrector = 17, kernel = composition)", 100);
+    MESSAGE("outer solar system, h = 200: plain " << plain << ", corrected " << corrected << ", with kernel " << kernel
+                                                  << " (h = 100: " << kernel_half << ")");
+    CHECK(corrected < plain);
+    CHECK(kernel * 1e3 < plain);
 }
 
 }  // namespace test_program_test_method_kinds
