@@ -32,6 +32,7 @@ public:
     }
     void start(const State&, double, bool) {}
     void after_step(const State&, double) {}
+    void finish(const State&, double) {}
 };
 
 template <class Sys, class State>
@@ -59,6 +60,12 @@ public:
             interpolant_.evaluate(times_[next_], at_);
             write(times_[next_], at_);
         }
+    }
+
+    // The run ended at t_end, though its last step's time may be a rounding
+    // below it (t0 + n dt): times up to t_end get the final state.
+    void finish(const State& x, double t_end) {
+        for (; next_ < times_.size() && times_[next_] <= t_end; ++next_) write(times_[next_], x);
     }
 
 private:
@@ -162,6 +169,7 @@ private:
             r.steps = steps;
             r.force_evaluations = forces;
             r.final_state = to_vector(x);
+            if (timed) rows.finish(x, t_end);
         } catch (const integration_error& e) {
             r.stable = false;
             r.blowup_step = e.step;

@@ -225,6 +225,9 @@ void write_heading(const scene& s, const run_plan& plan, const reference_state& 
             out << "  (a sweep: each method runs its first, largest, value; `sympl report` runs them all)\n";
             break;
         }
+    if (s.output.times_dropped)
+        out << "  (" << s.output.times_dropped << " of the output times are past t_end = " << format_number(s.t_end, 17)
+            << " and have no rows)\n";
     if (!ref.failure.empty()) out << "  no final errors: " << ref.failure << "\n";
 }
 

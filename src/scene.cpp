@@ -47,7 +47,7 @@ void read_inline_table(const reader& r, const toml::node& e, std::map<std::strin
     const toml::table* t = e.as_table();
     if (!t) r.fail(e, "each [[table]] must be a table");
     r.only_keys(*t, {"name", "kick", "drift", "order", "convention"}, "[[table]]");
-    if (!t->get("name") || !t->get("kick") || !t->get("drift")) r.fail(e, "[[table]] needs name, kick and drift");
+    r.need_keys(e, *t, {"name", "kick", "drift"}, "[[table]]");
     const toml::node& name_node = *t->get("name");
     const std::string name = r.string(name_node, "table.name");
     // A scene's table never hides a method of the same name, nor another of its tables.
@@ -110,7 +110,7 @@ void read_system(const reader& r, const toml::table& doc, scene& s) {
         const toml::table* t = i->as_table();
         if (!t) r.fail(*i, "'initial' must be a table with q and p");
         r.only_keys(*t, {"q", "p"}, "[initial]");
-        if (!t->get("q") || !t->get("p")) r.fail(*i, "[initial] needs both q and p");
+        r.need_keys(*i, *t, {"q", "p"}, "[initial]");
         s.q0 = r.numbers(*t->get("q"), "initial.q");
         s.p0 = r.numbers(*t->get("p"), "initial.p");
         if (s.q0.size() != s.p0.size() || s.q0.empty())
@@ -171,7 +171,7 @@ std::vector<double> read_output_times(const reader& r, const toml::node& n, cons
         const toml::node* from = t->get("from");
         const toml::node* to = t->get("to");
         const toml::node* count = t->get("count");
-        if (!from || !to || !count) r.fail(n, "'output.times' needs from, to and count");
+        r.need_keys(n, *t, {"from", "to", "count"}, "output.times");
         const double a = r.number(*from, "output.times.from"), b = r.number(*to, "output.times.to");
         for (const auto& [node, v] : {std::pair{from, a}, std::pair{to, b}})
             if (!std::isfinite(v) || v < s.t0 || v > file_t_end)
@@ -181,17 +181,19 @@ std::vector<double> read_output_times(const reader& r, const toml::node& n, cons
                                    "; expected to >= from");
         const auto c = count->value<std::int64_t>();
         if (!c || !count->is_integer() || *c < 1)
-            r.fail(*count, "'output.times.count' must be an integer >= 1");
+            r.fail(*count, "'output.times.count' = " + reader::text_of(*count) + "; expected an integer >= 1");
         check_count(*count, double(*c));
         if (*c > 1 && a == b) r.fail(*count, "'output.times' from = to = " + shortest(a) + " with count = " +
                                                  std::to_string(*c) + "; expected count = 1 for a single time");
+        if (*c == 1 && a != b)  // one time cannot span from..to; which end was meant is a guess
+            r.fail(*count, "'output.times' count = 1 with from = " + shortest(a) + " < to = " + shortest(b) +
+                               "; expected count >= 2, or from = to for a single time");
         times.reserve(std::size_t(*c));
         for (std::int64_t i = 0; i < *c; ++i)  // the last one is `to` itself, not a rounded sum
             times.push_back(i + 1 == *c ? b : a + (b - a) * (double(i) / double(*c - 1)));
     } else {
         r.fail(n, "'output.times' must be an array of times or {from, to, count}");
     }
-    std::erase_if(times, [&](double t) { return t > s.t_end; });  // --quick's shorter span
     return times;
 }
 
@@ -215,6 +217,7 @@ void read_output(const reader& r, const toml::node& o, scene& s, double file_t_e
             r.fail(*n, "'output.times' and 'output.trajectory_every' both choose the trajectory's rows; expected one "
                        "of them");
         s.output.times = read_output_times(r, *n, s, file_t_end);
+        s.output.times_dropped = std::erase_if(s.output.times, [&](double t) { return t > s.t_end; });  // --quick
     }
 }
 
@@ -225,7 +228,7 @@ void read_checkpoint(const reader& r, const toml::node& c, const toml::array& me
     r.only_keys(*t, {"every_steps", "file"}, "'checkpoint'");
     const toml::node* every = t->get("every_steps");
     const toml::node* file = t->get("file");
-    if (!every || !file) r.fail(c, "'checkpoint' needs every_steps and file");
+    r.need_keys(c, *t, {"every_steps", "file"}, "checkpoint");
     const auto n = every->value<std::int64_t>();
     if (!every->is_integer() || !n || *n < 1 || *n > std::int64_t(1e15))
         r.fail(*every, "'checkpoint.every_steps' must be an integer in [1, 1e15]");

@@ -25,12 +25,14 @@ struct output_spec {
     // `times = [...]` or `{from, to, count}`: trajectory rows at these times,
     // read off each step's Hermite interpolant (methods/dense_output.hpp); the
     // steps are the run's own. Sorted, inside [t0, t_end]; --quick drops those
-    // past its shorter t_end.
+    // past its shorter t_end (times_dropped counts them; the trajectory file is
+    // still written, with the rows that remain, so that it is never missing).
     std::vector<double> times;
+    std::size_t times_dropped = 0;
     bool final_state = false;
     bool loop_area = false;            // area of a loop of initial conditions around x0, plane 0
     std::string directory = ".";       // where `sympl run` writes its files
-    bool writes_trajectory() const { return trajectory_every != 0 || !times.empty(); }
+    bool writes_trajectory() const { return trajectory_every != 0 || !times.empty() || times_dropped != 0; }
 };
 inline constexpr std::size_t max_output_times = 10'000'000;
 

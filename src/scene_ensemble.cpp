@@ -37,8 +37,7 @@ ensemble_spec read_ensemble(const reader& r, const toml::node& node, const scene
             const toml::table* a = n.as_table();
             if (!a) r.fail(n, "'ensemble.grid." + name + "' must be {from = ..., to = ..., count = ...}");
             r.only_keys(*a, {"from", "to", "count"}, "ensemble.grid." + name);
-            if (!a->get("from") || !a->get("to") || !a->get("count"))
-                r.fail(n, "'ensemble.grid." + name + "' needs from, to and count");
+            r.need_keys(n, *a, {"from", "to", "count"}, "ensemble.grid." + name);
             ensemble_axis axis{name, r.number(*a->get("from"), name + ".from"), r.number(*a->get("to"), name + ".to"),
                                integer(*a->get("count"), name + ".count", 1, 1000000)};
             if (!std::isfinite(axis.from) || !std::isfinite(axis.to))

@@ -2,6 +2,7 @@
 // Reading a scene's TOML (scene.cpp, scene_ensemble.cpp): every error names
 // the file, line and column and what was expected.
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,25 @@ struct reader {
                 std::vector<std::string> names(allowed.begin(), allowed.end());
                 fail(node, "unknown key '" + std::string(key.str()) + "' in " + where + "; expected one of: " + join(names));
             }
+    }
+
+    // Each of `keys` present in t (at n), or an error naming the first missing one.
+    void need_keys(const toml::node& n, const toml::table& t, const std::vector<std::string>& keys,
+                   const std::string& where) const {
+        std::string form;
+        for (const auto& k : keys) form += (form.empty() ? "{" : ", ") + k + " = ...";
+        for (const auto& k : keys)
+            if (!t.get(k))
+                fail(n, (where.starts_with('[') ? where : "'" + where + "'") + " has no '" + k + "'; expected " + form + "}");
+    }
+
+    // A value as the file gives it, for an error message (cut short if long).
+    static std::string text_of(const toml::node& n) {
+        std::ostringstream os;
+        n.visit([&](const auto& v) { os << v; });
+        std::string text = os.str();
+        if (text.size() > 40) text = text.substr(0, 37) + "...";
+        return text;
     }
 
     double number(const toml::node& n, const std::string& key) const {
@@ -75,10 +95,11 @@ struct reader {
             const toml::node* from = t->get("from");
             const toml::node* to = t->get("to");
             const toml::node* count = t->get("count");
-            if (!from || !to || !count) fail(n, "'" + key + "' needs from, to and count");
+            need_keys(n, *t, {"from", "to", "count"}, key);
             const double a = positive(*from, key + ".from"), b = positive(*to, key + ".to");
             const auto c = count->value<std::int64_t>();
-            if (!c || *c < 1 || *c > 1000) fail(*count, "'" + key + ".count' must be an integer in [1, 1000]");
+            if (!c || !count->is_integer() || *c < 1 || *c > 1000)
+                fail(*count, "'" + key + ".count' = " + text_of(*count) + "; expected an integer in [1, 1000]");
             for (std::int64_t i = 0; i < *c; ++i)
                 out.push_back(*c == 1 ? a : a * std::pow(b / a, double(i) / double(*c - 1)));
         } else {

@@ -230,20 +230,54 @@ TEST_CASE("run: output times are read off each step's interpolant at its order, 
     CHECK(on_ends[3] == every[2]);
 }
 
+namespace {
+// An observed, untimed run at step dt writing the rows of the scene's output
+// times (quintic: the systems here have T = p^2/2) to `rows`.
+run_request timed_rows_request(const scene& s, double dt, std::ostringstream& rows) {
+    run_request rq;
+    rq.dt = dt;
+    rq.energy = true;
+    rq.timing_repeats = 0;
+    rq.output_times = s.output.times;
+    rq.output_order = 5;
+    rows << std::setprecision(17);
+    rq.trajectory = &rows;
+    return rq;
+}
+}  // namespace
+
+TEST_CASE("run: an output time at t_end gets its row though the last step's time is a rounding below it") {
+    // 3 * 0.3 = 0.8999999999999999: the steps end a hair before t_end = 0.9,
+    // and the run ends there (no step of 1e-16 is taken).
+    REQUIRE(0.0 + 3 * 0.3 < 0.9);
+    const scene s = parse_scene("system = \"pendulum\"\nmethods = [\"leapfrog_kdk\", \"odeint_rk4\"]\ndt = 0.3\n"
+                                "t_end = 0.9\n[output]\ntimes = [0, 0.45, 0.9]\n",
+                                "end.toml");
+    const problem p = problem_of(s);
+    for (const scene_method& m : s.methods) {
+        CAPTURE(m.name);
+        std::ostringstream rows;
+        const run_request rq = timed_rows_request(s, 0.3, rows);
+        const run_result r = p.run(m, rq, s.t0, s.t_end, p.x0);
+        REQUIRE(r.stable);
+        CHECK(r.steps == 3);
+        std::istringstream lines(rows.str());
+        std::vector<std::string> all;
+        for (std::string line; std::getline(lines, line);) all.push_back(line);
+        REQUIRE(all.size() == 3);
+        std::ostringstream last;
+        last << std::setprecision(17) << 0.9 << ',' << r.final_state[0] << ',' << r.final_state[1];
+        CHECK(all[2] == last.str());
+    }
+}
+
 TEST_CASE("run: output times after a resume from a checkpoint: the rows of the uninterrupted run, byte for byte") {
     const scene s = parse_scene("system = \"kepler\"\nparameters = {eccentricity = 0.7}\nmethods = [\"blanes_moan_s6\"]\n"
                                 "dt = 0.01\nt_end = 5\n[output]\ntimes = {from = 0, to = 5, count = 201}\n",
                                 "resume.toml");
     const problem p = problem_of(s);
-    run_request rq;
-    rq.dt = 0.01;
-    rq.energy = true;
-    rq.timing_repeats = 0;
-    rq.output_times = s.output.times;
-    rq.output_order = 5;
     std::ostringstream whole;
-    whole << std::setprecision(17);
-    rq.trajectory = &whole;
+    run_request rq = timed_rows_request(s, 0.01, whole);
     std::vector<checkpoint_record> saved;
     rq.checkpoint.every_steps = 37;  // between output times (every 0.025) and, at t = 1.85, on one
     rq.checkpoint.save = [&](checkpoint_record& r) {

@@ -162,6 +162,13 @@ TEST_CASE("scene: output times as a list or {from, to, count}, sorted, inside th
     // --quick's shorter span leaves out the later times, and only those.
     const scene quick = parse_scene(with_times("[1, 2, 4, 6]") + "[quick]\nt_end = 3\n", "scene.toml", true);
     CHECK(quick.output.times == std::vector<double>{1, 2});
+    CHECK(quick.output.times_dropped == 2);
+    // When --quick leaves none, the trajectory file is still written (its
+    // header; the run's summary says why it has no rows).
+    const scene none = parse_scene(with_times("[4, 6]") + "[quick]\nt_end = 3\n", "scene.toml", true);
+    CHECK(none.output.times.empty());
+    CHECK(none.output.times_dropped == 2);
+    CHECK(none.output.writes_trajectory());
 
     CHECK(error_of(with_times("[0, 2, 1]")) ==
           "scene.toml:8:16: output time 1 comes after 2; expected the times sorted, earliest first");
@@ -176,14 +183,21 @@ TEST_CASE("scene: output times as a list or {from, to, count}, sorted, inside th
     CHECK(error_of(with_times("{from = 2, to = 1, count = 3}")) ==
           "scene.toml:8:25: 'output.times.to' = 1 is before from = 2; expected to >= from");
     CHECK(error_of(with_times("{from = 0, to = 1, count = 0}")) ==
-          "scene.toml:8:36: 'output.times.count' must be an integer >= 1");
+          "scene.toml:8:36: 'output.times.count' = 0; expected an integer >= 1");
     CHECK(error_of(with_times("{from = 0, to = 1, count = 1.5}")) ==
-          "scene.toml:8:36: 'output.times.count' must be an integer >= 1");
+          "scene.toml:8:36: 'output.times.count' = 1.5; expected an integer >= 1");
+    // One time cannot stand for from..to: which end was meant is a guess.
+    CHECK(error_of(with_times("{from = 0, to = 1, count = 1}")) ==
+          "scene.toml:8:36: 'output.times' count = 1 with from = 0 < to = 1; expected count >= 2, or from = to for a "
+          "single time");
     CHECK(error_of(with_times("{from = 0, to = 1, count = 20000000}")) ==
           "scene.toml:8:36: 'output.times' asks for 2e+07 rows; expected at most 1e+07");
     CHECK(error_of(with_times("{from = 1, to = 1, count = 2}")) ==
           "scene.toml:8:36: 'output.times' from = to = 1 with count = 2; expected count = 1 for a single time");
-    CHECK(error_of(with_times("{from = 0, to = 1}")) == "scene.toml:8:9: 'output.times' needs from, to and count");
+    CHECK(error_of(with_times("{from = 0, to = 1}")) ==
+          "scene.toml:8:9: 'output.times' has no 'count'; expected {from = ..., to = ..., count = ...}");
+    CHECK(error_of(with_times("{to = 1, count = 3}")) ==
+          "scene.toml:8:9: 'output.times' has no 'from'; expected {from = ..., to = ..., count = ...}");
     CHECK(error_of(with_times("[1]\ntrajectory_every = 3")) ==
           "scene.toml:8:9: 'output.times' and 'output.trajectory_every' both choose the trajectory's rows; expected "
           "one of them");
