@@ -161,7 +161,13 @@ method_spec wisdom_holman(const std::string& name, const std::map<std::string, t
         const std::string option = trimmed(inner_name.substr(comma + 1));
         const auto equals = option.find('=');
         const std::string key = trimmed(option.substr(0, equals)), value = equals == std::string::npos ? "" : trimmed(option.substr(equals + 1));
-        if (key != "corrector" && key != "kernel") break;
+        if (key != "corrector" && key != "kernel") {
+            // Part of an inline table's name (which may hold commas), or a misspelt option.
+            if (equals != std::string::npos && !resolve_method(trimmed(inner_name), inline_tables))
+                throw invalid_argument("method '" + name + "': unknown option '" + key +
+                                       "'; expected corrector or kernel" + usage);
+            break;
+        }
         if (equals == std::string::npos || value.empty())
             throw invalid_argument("method '" + name + "': option '" + option + "' has no value" + usage);
         if (!seen.insert(key).second) throw invalid_argument("method '" + name + "': '" + key + "' given twice" + usage);
