@@ -116,7 +116,10 @@
 // Jacobi coordinates; here B holds H_jump, a function of the momenta, and
 // {B,{A,B}} has terms in the momenta ({H_jump,{T,H_interaction}} and
 // {H_jump,{V_Kepler,H_jump}}) that no kick represents. REBOUND's WHFast
-// likewise allows them in Jacobi coordinates only. The composition kernel,
+// allows every non-default kernel in Jacobi coordinates only (and correctors
+// in Jacobi and barycentric ones): corrector and composition kernel in these
+// coordinates are this library's combination, resting on the derivation above
+// and on the measurements of tests/methods/test_wisdom_holman.cpp. The composition kernel,
 // built of the flows alone, needs nothing of B; its O(B^3) term
 // h^4 [B,[B,[A,B]]] (zero when B is a function of the positions alone, not
 // here) is O(eps^3 h^3), below eps^2 h^4 while eps < h.
