@@ -98,7 +98,9 @@ TEST_CASE("conformal_splitting: every catalog table keeps its order on the dampe
 
 TEST_CASE("conformal_splitting: undamped but driven, a table keeps its general order for non-quadratic T") {
     const auto driven = damped_driven_by(relativistic_pendulum{}, 0.0, cosine_drive{});
-    for (const auto& [name, order] : {std::pair{"leapfrog_kdk", 2}, {"forest_ruth_4", 4}, {"yoshida_6", 6}}) {
+    for (const auto& entry : {std::pair{"leapfrog_kdk", 2}, {"forest_ruth_4", 4}, {"yoshida_6", 6}}) {
+        const char* name = entry.first;  // not a structured binding: CAPTURE takes none before clang 16
+        const int order = entry.second;
         CAPTURE(name);
         const order_measurement m = order_of(driven, method(name));
         CAPTURE(m.order);

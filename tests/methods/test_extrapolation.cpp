@@ -45,8 +45,10 @@ double measured_order(const H& h, const char* name, int columns, double t_end, d
 TEST_CASE("extrapolation: k columns of a symmetric order-p method give order p + 2(k - 1)") {
     // The pendulum is nonlinear; the relativistic pendulum has T = sqrt(1 + p^2) - 1, not quadratic.
     // (Order 8 and up leaves too short an asymptotic range above rounding in double to read.)
-    for (const auto& [name, p] : std::vector<std::pair<const char*, int>>{{"leapfrog_kdk", 2}, {"leapfrog_dkd", 2},
-                                                                          {"forest_ruth_4", 4}}) {
+    for (const auto& entry : std::vector<std::pair<const char*, int>>{{"leapfrog_kdk", 2}, {"leapfrog_dkd", 2},
+                                                                       {"forest_ruth_4", 4}}) {
+        const char* name = entry.first;  // not a structured binding: CAPTURE takes none before clang 16
+        const int p = entry.second;
         for (int k : {2, 3}) {
             if (p + 2 * (k - 1) > 6) continue;
             CAPTURE(name);
@@ -69,7 +71,9 @@ TEST_CASE("extrapolation: the weights read a polynomial in h^2 at 0, their size 
     // For a fourth-order inner method the weights cancel h^4, h^6, ... instead.
     splitting_stepper<hamiltonians::pendulum, X1> fr(hamiltonians::pendulum{}, method("forest_ruth_4"));
     for (int k = 1; k <= 8; ++k) {
-        for (const auto& [stepper, p] : {std::pair{extrapolation_stepper(inner, k), 2}, {extrapolation_stepper(fr, k), 4}}) {
+        for (const auto& entry : {std::pair{extrapolation_stepper(inner, k), 2}, {extrapolation_stepper(fr, k), 4}}) {
+            const auto& stepper = entry.first;  // not a structured binding: CAPTURE takes none before clang 16
+            const int p = entry.second;
             CAPTURE(k);
             CAPTURE(p);
             const auto& c = stepper.combination();

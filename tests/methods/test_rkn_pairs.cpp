@@ -375,8 +375,10 @@ TEST_CASE("rkn pairs: dprkn6's dense output is of order 6 in q and 5 in p inside
     for (bool kepler : {false, true}) {
         CAPTURE(kepler);
         const long double dt = kepler ? 0.05L : 0.2L;
-        const auto [q1, p1] = worst(kepler, dt);
-        const auto [q2, p2] = worst(kepler, dt / 2);
+        // Named values, not a structured binding: CAPTURE's lambda cannot take
+        // one before clang 16 (the sanitizer build's compiler is clang 14).
+        const auto coarse = worst(kepler, dt), fine = worst(kepler, dt / 2);
+        const long double q1 = coarse.first, p1 = coarse.second, q2 = fine.first, p2 = fine.second;
         CAPTURE(double(q1));
         CAPTURE(double(q2));
         CAPTURE(double(p1));

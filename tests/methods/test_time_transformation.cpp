@@ -33,8 +33,10 @@ K kepler_period(const table& t, double e, std::size_t n, stepper_options options
 }  // namespace
 
 TEST_CASE("logh: a table keeps its order in fictitious time (Kepler e = 0.9, final position)") {
-    for (const auto& [name, order] : std::vector<std::pair<const char*, double>>{
+    for (const auto& entry : std::vector<std::pair<const char*, double>>{
              {"leapfrog_kdk", 2}, {"forest_ruth_4", 4}, {"blanes_moan_s6", 4}, {"yoshida_6", 6}}) {
+        const char* name = entry.first;  // not a structured binding: lambdas take none before clang 16
+        const double order = entry.second;
         CAPTURE(name);
         order_options o;
         o.min_steps = 64;

@@ -46,7 +46,9 @@ t_end = 10
         CHECK(rows[i][5] == "stable");
         errors[rows[i][1]].push_back(std::stod(rows[i][14]));
     }
-    for (const auto& [method, e] : errors) {
+    for (const auto& row : errors) {  // not a structured binding: CAPTURE takes none before clang 16
+        const std::string& method = row.first;
+        const std::vector<double>& e = row.second;
         CAPTURE(method);
         for (std::size_t k = 1; k < e.size(); ++k) CHECK(e[k] < e[k - 1]);  // dt (or the tolerance) falls: so does the error
     }
