@@ -2,15 +2,23 @@
 # Builds the libFuzzer targets with clang 14 (ASan + UBSan) and runs each for
 # a bounded time on a copy of its seed corpus (the built-in scenes; a few
 # tables). A finding stops with libFuzzer's report and a non-zero exit.
-# Usage: tests/fuzz/run.sh [SECONDS per target, default 30]
+# Usage: tests/fuzz/run.sh [SECONDS per target, default 30] [BUILD_DIR]
+# BUILD_DIR: a tree configured with clang 14 and -DSYMPL_FUZZ=ON (CI's
+# sanitizer tree, whose library is then compiled once for both); without it,
+# build-fuzz is configured here with the fuzz targets alone.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 seconds=${1:-30}
-CXX=clang++-14 cmake -S . -B build-fuzz -DSYMPL_FUZZ=ON -DSYMPL_BUILD_TESTS=OFF -DSYMPL_BUILD_BENCH=OFF \
-    -DCMAKE_BUILD_TYPE=RelWithDebInfo
-cmake --build build-fuzz -j2 --target fuzz_scene fuzz_check_table
-rm -rf build-fuzz/corpus && mkdir -p build-fuzz/corpus/scene build-fuzz/corpus/table
-cp src/scenes/*.toml build-fuzz/corpus/scene/
-cp tests/fuzz/corpus_table/* build-fuzz/corpus/table/
-build-fuzz/fuzz_scene -max_total_time="$seconds" -max_len=8192 -print_final_stats=1 build-fuzz/corpus/scene
-build-fuzz/fuzz_check_table -max_total_time="$seconds" -max_len=4096 -print_final_stats=1 build-fuzz/corpus/table
+build=${2:-}
+if [ -z "$build" ]; then
+    build=build-fuzz
+    CXX=clang++-14 cmake -S . -B "$build" -DSYMPL_FUZZ=ON -DSYMPL_BUILD_TESTS=OFF -DSYMPL_BUILD_BENCH=OFF \
+        -DCMAKE_BUILD_TYPE=RelWithDebInfo
+fi
+grep -q '^SYMPL_FUZZ:BOOL=ON' "$build/CMakeCache.txt" || { echo "run.sh: $build is not configured with -DSYMPL_FUZZ=ON" >&2; exit 2; }
+cmake --build "$build" -j2 --target fuzz_scene fuzz_check_table
+rm -rf "$build/corpus" && mkdir -p "$build/corpus/scene" "$build/corpus/table"
+cp src/scenes/*.toml "$build/corpus/scene/"
+cp tests/fuzz/corpus_table/* "$build/corpus/table/"
+"$build/fuzz_scene" -max_total_time="$seconds" -max_len=8192 -print_final_stats=1 "$build/corpus/scene"
+"$build/fuzz_check_table" -max_total_time="$seconds" -max_len=4096 -print_final_stats=1 "$build/corpus/table"
