@@ -25,7 +25,10 @@
 // Danby's "M + 0.85 e" starter otherwise), kept inside a bracket [lo, hi] of
 // the root and replaced by bisection whenever it leaves the bracket or
 // stalls: the solve always ends, in at most kepler_max_iterations
-// evaluations.
+// evaluations. A small last step is evaluated from the point before by the
+// addition theorems of the G's rather than by the series. A Wisdom-Holman
+// drift of the outer planets (h ~ 1/20 of Jupiter's period) sums the series
+// once: one quartic step from the series starter reaches rounding.
 //
 // kepler_drift_all drifts many independent bodies held as structure of arrays:
 // lanes of `kepler_lanes` bodies run a fixed number of quartic iterations
@@ -177,6 +180,41 @@ kepler_residual<S> residual_at(const kepler_orbit<S>& o, S s) {
     return k;
 }
 
+// The same at s + d, carried from the values k at s instead of summing the
+// Stumpff series again: the last step of a converging solve is small, and
+// this is its whole cost. t(s), r(s) and the G's solve y''' = -beta y'
+// (G0' = -beta G1, G1' = G0, G2' = G1, r'' = GM - beta r), whose solutions are
+// y(s + d) = y + y' G1(d) + y'' G2(d), so, exactly for any d,
+//     t(s + d) = t + r d + r' G2(d) + r'' G3(d),   r(s + d) = r + r' G1(d) + r'' G2(d),
+//     r'(s + d) = r' G0(d) + r'' G1(d),            r''(s + d) = r'' G0(d) - beta r' G1(d),
+//     G1(s + d) = G1 + G0 G1(d) - beta G1 G2(d),   G2(s + d) = G2 + G1 G1(d) + G0 G2(d),
+//     G0(s + d) = G0 - beta (G1 G1(d) + G0 G2(d))
+// (the addition theorems of cos and sin, cosh and sinh, in the universal
+// G's). Taken only for |beta d^2| <= 2^-16 and |d| <= |s| / 16: the
+// G_k(d) = d^k c_k(beta d^2) then need the c_k to y^2 only, the first term left
+// out, |y|^3 / (k + 6)!, being below 2^-48 / 720 of c_k's leading 1/k!, and
+// s + d is near s, so every sum above adds terms no larger than the result's
+// scale (no cancellation beyond a direct evaluation's). The rounding of t(s)
+// is carried along, as it would be met again at s + d: the noise stays k's.
+template <class S>
+kepler_residual<S> residual_shifted(const kepler_orbit<S>& o, const kepler_residual<S>& k, S d) {
+    const S y = o.beta * d * d;
+    const S G0d = 1 - y * (S(1) / 2 - y * (S(1) / 24));
+    const S G1d = d * (1 - y * (S(1) / 6 - y * (S(1) / 120)));
+    const S G2d = d * d * (S(1) / 2 - y * (S(1) / 24 - y * (S(1) / 720)));
+    const S G3d = d * d * d * (S(1) / 6 - y * (S(1) / 120 - y * (S(1) / 5040)));
+    kepler_residual<S> n;
+    n.f = k.f + (k.r * d + (k.dr * G2d + k.ddr * G3d));
+    n.noise = k.noise;
+    n.r = k.r + (k.dr * G1d + k.ddr * G2d);
+    n.dr = k.dr * G0d + k.ddr * G1d;
+    n.ddr = k.ddr * G0d - o.beta * k.dr * G1d;
+    n.c0 = k.c0 - o.beta * (k.g1 * G1d + k.c0 * G2d);
+    n.g1 = k.g1 + (k.c0 * G1d - o.beta * k.g1 * G2d);
+    n.g2 = k.g2 + (k.g1 * G1d + k.c0 * G2d);
+    return n;
+}
+
 // Danby's quartic correction (Danby 1988, eq. 6.6.7): Newton, then two
 // refinements with the second and third derivatives.
 template <class S>
@@ -258,6 +296,9 @@ S starting_value(const kepler_orbit<S>& o) {
 // Kepler's equation solved for s inside a bracket of its root: quartic steps
 // while they stay inside and shrink, bisection (geometric while the bracket
 // spans decades) when not. Ends in at most kepler_max_iterations evaluations.
+// A point a small step from one where the series were summed is evaluated
+// by residual_shifted from there (never from a shifted one, so its rounding
+// is that of one shift): a converging solve sums the series once less.
 template <class S>
 kepler_residual<S> solve_universal(const kepler_orbit<S>& o, S guess) {
     constexpr S inf = std::numeric_limits<S>::infinity(), eps = std::numeric_limits<S>::epsilon();
@@ -265,10 +306,21 @@ kepler_residual<S> solve_universal(const kepler_orbit<S>& o, S guess) {
     // t(s) increases and t(0) = 0: the root has the sign of h.
     S lo = forward ? S(0) : -inf, hi = forward ? inf : S(0);
     S s = (std::isfinite(guess) && guess > lo && guess < hi) ? guess : o.h / o.r0;
-    kepler_residual<S> best{};
-    S best_f = inf, last_step = inf, step_before = inf;
+    kepler_residual<S> best{}, summed{};
+    S best_f = inf, last_step = inf, step_before = inf, summed_at = 0;
+    bool shift_from_summed = false;
     for (int it = 0; it < kepler_max_iterations; ++it) {
-        const kepler_residual<S> k = residual_at(o, s);
+        const S d = s - summed_at;  // exact: within |s| / 16 of summed_at when taken
+        kepler_residual<S> k;
+        if (shift_from_summed && std::fabs(o.beta) * d * d <= S(0x1p-16) && 16 * std::fabs(d) <= std::fabs(summed_at)) {
+            k = residual_shifted(o, summed, d);
+            shift_from_summed = false;
+        } else {
+            k = residual_at(o, s);
+            summed = k;
+            summed_at = s;
+            shift_from_summed = std::isfinite(k.f) && std::isfinite(k.r);
+        }
         bool done = false;
         if (!std::isfinite(k.f) || !std::isfinite(k.r)) {
             // Only |s| far beyond the root overflows the c_k: the root lies nearer 0.
