@@ -216,10 +216,20 @@ kepler_residual<S> residual_shifted(const kepler_orbit<S>& o, const kepler_resid
 }
 
 // Danby's quartic correction (Danby 1988, eq. 6.6.7): Newton, then two
-// refinements with the second and third derivatives.
+// refinements with the second and third derivatives. Both it and the cubic
+// r d + r' d^2/2 + r'' d^3/6 = -f reverted as a series in the Newton step d1
+// (Abramowitz & Stegun 1964, eq. 3.6.25),
+//     d = d1 - a2 d1^2 + (2 a2^2 - a3) d1^3,   a2 = r' / (2 r),  a3 = r'' / (6 r),
+// miss the cubic's root by O(d1^4) (by (a2^3 - a2 a3) d1^4 and five times
+// that): the series, one division instead of three in a row, is taken for a
+// small step, |a2 d1| and |a3 d1^2| <= 2^-16, where it misses by less than
+// 2^-29 of d1 (a step from within 1e-6 of the root, as the series starter
+// gives the outer planets, lands at rounding either way).
 template <class S>
 S quartic_step(S f, S r, S dr, S ddr) {
-    const S d1 = -f / r;
+    const S per_r = 1 / r, d1 = -f * per_r;
+    const S a2d = dr * per_r / 2 * d1, a3dd = ddr * per_r / 6 * d1 * d1;
+    if (std::fabs(a2d) <= S(0x1p-16) && std::fabs(a3dd) <= S(0x1p-16)) return d1 * (1 - a2d + (2 * a2d * a2d - a3dd));
     const S d2 = -f / (r + d1 * dr / 2);
     return -f / (r + d2 * dr / 2 + d2 * d2 * ddr / 6);
 }
