@@ -64,9 +64,25 @@ inline constexpr int kepler_lane_iterations = 6;
 
 namespace detail {
 
+// How many terms of Stumpff's series reach S's rounding at |x| <= bound: n,
+// the first left out of c2's being bound^n / (2n + 2)! <= eps / 64, a
+// sixteenth of c2's rounding (eps/2 of its 1/2). c3's, bound^n / (2n + 3)! against 1/6, is
+// smaller still, and c0 = 1 - x c2, c1 = 1 - x c3 carry x times these. (For
+// x < 0 the terms do not alternate, and the rest is below 1.001 times the
+// first.) For double: 7 terms at |x| <= 0.1, 5 at 1e-2, 4 at 1e-3.
+template <class S>
+constexpr int stumpff_terms(long double bound) {
+    long double term = 0.5L;  // c2's term n at |x| = bound: bound^n / (2n + 2)!
+    for (int n = 1;; ++n) {
+        term *= bound / ((2 * n + 1) * (2 * n + 2));
+        if (term <= static_cast<long double>(std::numeric_limits<S>::epsilon()) / 64 || n == 12) return n;
+    }
+}
+
 // Stumpff's functions c_k(x) = sum_j (-x)^j / (2j + k)!, k = 0..3, for W
 // lanes at once (W = 1: one body). x is divided by 4 until |x| <= 0.1, where
-// nine terms reach below long double's rounding (0.1^9 / 18! < 1e-25), and the
+// the series is summed to stumpff_terms<S>(0.1) terms (fewer for one body at
+// |x| <= 1e-2 or 1e-3, as the short drifts of the outer planets have), and the
 // quarter-angle recurrences bring it back (Danby 1988, sec. 6.9):
 //     c3(4x) = (c2(x) + c0(x) c3(x)) / 4,  c2(4x) = c1(x)^2 / 2,  c1(4x) = c0(x) c1(x).
 // c0 is taken at each level as 1 - x c2 rather than by c0(4x) = 2 c0(x)^2 - 1,
@@ -74,6 +90,15 @@ namespace detail {
 // keeps an absolute error of a few units of rounding for |x| up to (pi + 2)^2.
 template <class S, int W>
 void stumpff_lanes(const S* x_in, S* c0, S* c1, S* c2, S* c3) {
+    // 1/m!, m = 0..25: c2's terms are 1/(2j + 2)!, c3's 1/(2j + 3)!, j < 12.
+    static constexpr auto inverse_factorial = [] {
+        std::array<long double, 26> a{};
+        long double m_factorial = 1;
+        a[0] = 1;
+        for (int m = 1; m < 26; ++m) a[std::size_t(m)] = 1 / (m_factorial *= m);
+        return a;
+    }();
+    constexpr int terms = stumpff_terms<S>(0.1L), terms_2 = stumpff_terms<S>(1e-2L), terms_3 = stumpff_terms<S>(1e-3L);
     S x[W];
     int levels[W];
     int most = 0;
@@ -93,18 +118,16 @@ void stumpff_lanes(const S* x_in, S* c0, S* c1, S* c2, S* c3) {
         most += more ? 1 : 0;
         if (most > 1100) break;  // only a non-finite x gets here
     }
+    // Lanes sum a fixed number of terms (the loops vectorise); one body as few as its |x| needs.
+    int n = terms;
+    if constexpr (W == 1) n = std::fabs(x[0]) <= S(1e-3) ? terms_3 : std::fabs(x[0]) <= S(1e-2) ? terms_2 : terms;
     for (int l = 0; l < W; ++l) {
         const S y = x[l];
         // Horner: c2 = 1/2! - y/4! + y^2/6! - ..., c3 = 1/3! - y/5! + ...
-        S s2 = S(1) / S(6402373705728000.0L);   // 1/18!
-        S s3 = S(1) / S(121645100408832000.0L); // 1/19!
-        constexpr long double f2[] = {1.0L / 2, 1.0L / 24, 1.0L / 720, 1.0L / 40320, 1.0L / 3628800,
-                                      1.0L / 479001600, 1.0L / 87178291200, 1.0L / 20922789888000};
-        constexpr long double f3[] = {1.0L / 6, 1.0L / 120, 1.0L / 5040, 1.0L / 362880, 1.0L / 39916800,
-                                      1.0L / 6227020800, 1.0L / 1307674368000, 1.0L / 355687428096000};
-        for (int j = 7; j >= 0; --j) {
-            s2 = S(f2[j]) - y * s2;
-            s3 = S(f3[j]) - y * s3;
+        S s2 = S(inverse_factorial[std::size_t(2 * n)]), s3 = S(inverse_factorial[std::size_t(2 * n + 1)]);
+        for (int j = n - 2; j >= 0; --j) {
+            s2 = S(inverse_factorial[std::size_t(2 * j + 2)]) - y * s2;
+            s3 = S(inverse_factorial[std::size_t(2 * j + 3)]) - y * s3;
         }
         c2[l] = s2;
         c3[l] = s3;
