@@ -195,7 +195,9 @@ TEST_CASE("method kinds: wh(<table>, corrector = K, kernel = composition) checks
     refused("wh(leapfrog_kdk, kernel = composition)",
             "method 'wh(leapfrog_kdk, kernel = composition)': kernel composition with table 'leapfrog_kdk'; expected "
             "the drift-kick-drift leapfrog");
-    refused("wh(saba_2, corrector = 5)", "symplectic corrector of order 5 with table 'saba_2'; expected the leapfrog");
+    refused("wh(ruth_3, corrector = 5)",
+            "symplectic corrector of order 5 with table 'ruth_3' (not symmetric); expected a symmetric table");
+    CHECK(resolve_method("wh(blanes_2013_aba_10_6_4, corrector = 17)", {})->corrector_order == 17);
     refused("wh(leapfrog_kdk, corrector = 4)", "order 4; expected 3, 5, 7, 9, 11 or 17");
     refused("wh(leapfrog_kdk, corrector = 3x)", "corrector = '3x'; expected wh(<a table");
     refused("wh(leapfrog_kdk, corrector = -3)", "corrector = '-3'; expected wh(<a table");

@@ -40,7 +40,10 @@ struct no_observer {
 
 struct run_options {
     std::size_t observe_every = 1;  // observer called at t0, every k steps, and at the end
-    std::size_t check_every = 64;   // finiteness check interval (steps)
+    // Finiteness check interval (steps). A stepper whose every return costs
+    // extra work (wisdom_holman_stepper's corrector) may ask for longer chunks
+    // by a member steps_per_check(); the larger of the two is taken.
+    std::size_t check_every = 64;
     // Resume a run after its step `first_step` (a checkpoint): times stay
     // t0 + i*dt from the integer index, the observer is not called again for
     // the start, and the stepper is expected to hold the memory it had there
@@ -97,6 +100,12 @@ void advance(Stepper& s, State& x, T t0, T dt, std::size_t first, std::size_t n,
         else
             for (std::size_t i = 0; i < n; ++i) s.step(x, dt);
     }
+}
+
+template <class Stepper>
+std::size_t check_interval(const Stepper& s, std::size_t check_every) {
+    if constexpr (requires { s.steps_per_check(); }) return std::max<std::size_t>(check_every, s.steps_per_check());
+    else return check_every;
 }
 
 template <class Stepper>
@@ -191,7 +200,8 @@ run_summary integrate_steps(Stepper& stepper, typename Stepper::state_type& x, t
     const auto f0 = detail::forces(stepper);
     const auto v0 = detail::velocities(stepper);
     constexpr bool observed = !std::is_same_v<std::decay_t<Observer>, no_observer>;
-    const std::size_t cadence = observed ? options.observe_every : options.check_every;
+    const std::size_t check_every = detail::check_interval(stepper, options.check_every);
+    const std::size_t cadence = observed ? options.observe_every : check_every;
     if (options.first_step > n || options.first_step % cadence != 0)
         throw invalid_argument("integrate_steps: first_step = " + std::to_string(options.first_step) + " of " +
                                std::to_string(n) + " steps; expected a multiple of " + std::to_string(cadence) +
@@ -203,7 +213,7 @@ run_summary integrate_steps(Stepper& stepper, typename Stepper::state_type& x, t
     std::size_t done = options.first_step;
     while (done < n) {
         const std::size_t m = observed ? std::min(options.observe_every, n - done) : n - done;
-        detail::checked_steps(stepper, x, checkpoint, t0, dt, done, m, options.check_every);
+        detail::checked_steps(stepper, x, checkpoint, t0, dt, done, m, check_every);
         done += m;
         if constexpr (observed) observer(std::as_const(x), t0 + T(done) * dt);
     }

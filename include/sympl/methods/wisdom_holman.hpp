@@ -50,7 +50,7 @@
 // Kepler drift and one interaction evaluation per step.
 //
 // Symplectic corrector (Wisdom, Holman & Touma 1996, "Symplectic correctors",
-// Fields Inst. Commun. 10, 217), for the leapfrog only:
+// Fields Inst. Commun. 10, 217), for the leapfrog and any symmetric table:
 // wisdom_holman_options{.corrector_order = 3, 5, 7, 9, 11 or 17}. Write
 // A = H_Kepler, B = H_interaction + H_jump, u = h ad_A (ad_A X = {A, X}). To
 // first order in B (Baker-Campbell-Hausdorff), the leapfrog is the exact flow
@@ -79,6 +79,12 @@
 // per call of step() or steps(). The corrector changes what the state means
 // (the output is corrected), not the run: the long-run error left is
 // O(eps^2 h^2), a drift of the mean motions, so positions still converge as h^2.
+// Any other symmetric table takes the same C, with the weights solved for its
+// own f(u) (corrector_weights(order, table)): its eps h^(2n) terms go, its
+// eps^2 terms stay, e.g. O(eps h^(2K+2) + eps^2 h^6 + eps^3 h^4) for Blanes et
+// al. 2013's ABA(10,6,4) and ABA(8,6,4), O(eps h^(2K+2) + eps^2 h^2) for SABA_n.
+// As C is applied at every return, steps_per_check() asks the drivers of
+// integrate.hpp for chunks long enough that it costs under 1/32 of the run.
 //
 // Kernel (Wisdom, Holman & Touma 1996, sec. on kernels; Rein, Tamayo & Brown
 // 2019, MNRAS 489, 4632, sec. on kernel methods, their WHCKC): the corrector
@@ -131,10 +137,11 @@
 // drivers of integrate.hpp to report.
 //
 // Not done: Jacobi coordinates in this stepper (and with them the modified-kick
-// and lazy kernels), close encounters, correctors for tables other than the
-// leapfrog (e.g. Laskar & Robutel 2001's for SABA_n), a kernel for the
+// and lazy kernels), close encounters, Laskar & Robutel 2001's corrector term
+// of SABA_n (a kick by {{A,B},B} against eps^2 h^2), a kernel for the
 // kick-drift-kick leapfrog, Rein, Tamayo & Brown 2019's second corrector (for
 // the eps^2 h^4 term left with a kernel).
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -228,6 +235,92 @@ inline std::vector<coefficient> corrector_weights(int order, leapfrog_kernel ker
     }
 }
 
+// The weights c_1..c_K of the corrector of order 2K + 1 for any symmetric
+// table of plain kicks and drifts (drift = Kepler flow, kick = perturbation),
+// e.g. Laskar & Robutel 2001's SABA_n or Blanes et al. 2013's ABA(10,6,4). To
+// first order in B such a table is the flow over h of A + f(u) B with
+//     f(u) = (u/2) / sinh(u/2) * sum_i b_i cosh((tau_i - 1/2) u),
+// b_i the kick weights and tau_i the kicks' times in the step (the sum of the
+// drift weights before them): each kick is carried by the Kepler flow to the
+// middle of the step (the factor e^((tau_i - 1/2) u), paired into a cosh by the
+// symmetry), and the first-order Baker-Campbell-Hausdorff formula joins the
+// whole to the Kepler flow over h (the factor (u/2) / sinh(u/2)). For the two
+// leapfrogs this is the f of corrector_weights(order, kernel) above; a table
+// built for near-integrable systems has f(u) - 1 = O(u^(2n)) (its eps h^(2n)
+// term), and the corrector removes the even terms up to u^(2K): the error
+// left is O(eps h^(2K+2)) plus the table's own eps^2 terms. The c_i solve the
+// same conditions, 4 sum_i c_i a_i^(2k-1) / (2k-1)! = -[u^(2k)] f(u), k = 1..K,
+// here by Gaussian elimination in long double (for the leapfrogs it matches the
+// tabulated weights to 1e-15 relative; tests/methods/test_wisdom_holman.cpp).
+// Orders 3, 5, 7, 9, 11, 17; a table that is not symmetric, or has
+// force-gradient kicks, is an invalid_argument.
+inline std::vector<coefficient> corrector_weights(int order, const table& method) {
+    if (order != 3 && order != 5 && order != 7 && order != 9 && order != 11 && order != 17)
+        throw invalid_argument("symplectic corrector of order " + std::to_string(order) +
+                               "; expected 3, 5, 7, 9, 11 or 17");
+    if (method.has_force_gradient() || !method.is_symmetric())
+        throw invalid_argument("symplectic corrector of order " + std::to_string(order) + " with table '" +
+                               method.name() + "'" +
+                               (method.has_force_gradient() ? " (force-gradient kicks)" : " (not symmetric)") +
+                               "; expected a symmetric table of plain kicks and drifts (one that reads the same "
+                               "backwards, as leapfrog_kdk, saba_3, blanes_2013_aba_10_6_4)");
+    const int K = (order - 1) / 2;
+    // [u^(2k)] of sum_i b_i cosh((tau_i - 1/2) u), k = 0..K.
+    std::vector<coefficient> kicks(std::size_t(K) + 1, 0), shift(std::size_t(K) + 1, 0), f(std::size_t(K) + 1, 0);
+    coefficient tau = 0;
+    for (const substep& s : method.substeps()) {
+        if (s.kind == substep::drift) {
+            tau += s.weight;
+            continue;
+        }
+        const coefficient d = tau - 0.5L;
+        coefficient term = s.weight;  // b d^(2k) / (2k)!
+        for (int k = 0; k <= K; ++k) {
+            kicks[std::size_t(k)] += term;
+            term *= d * d / ((2 * k + 1) * (2 * k + 2));
+        }
+    }
+    // [u^(2k)] of (u/2) / sinh(u/2), the reciprocal of sum_n (u/2)^(2n) / (2n + 1)!.
+    std::vector<coefficient> series(std::size_t(K) + 1, 0);
+    coefficient term = 1;
+    for (int n = 0; n <= K; ++n) {
+        series[std::size_t(n)] = term;
+        term *= 0.25L / ((2 * n + 2) * (2 * n + 3));
+    }
+    shift[0] = 1;
+    for (int n = 1; n <= K; ++n)
+        for (int j = 1; j <= n; ++j) shift[std::size_t(n)] -= series[std::size_t(j)] * shift[std::size_t(n - j)];
+    for (int k = 0; k <= K; ++k)
+        for (int j = 0; j <= k; ++j) f[std::size_t(k)] += kicks[std::size_t(j)] * shift[std::size_t(k - j)];
+    // M c = -f_k: M_ki = 4 a_i^(2k-1) / (2k-1)!, a_i = i alpha; partial pivoting.
+    std::vector<std::vector<coefficient>> M(std::size_t(K), std::vector<coefficient>(std::size_t(K) + 1));
+    for (int k = 1; k <= K; ++k) {
+        for (int i = 1; i <= K; ++i) {
+            coefficient v = 4;
+            for (int m = 1; m <= 2 * k - 1; ++m) v *= corrector_alpha * i / m;
+            M[std::size_t(k - 1)][std::size_t(i - 1)] = v;
+        }
+        M[std::size_t(k - 1)][std::size_t(K)] = -f[std::size_t(k)];
+    }
+    for (std::size_t c = 0; c < std::size_t(K); ++c) {
+        std::size_t pivot = c;
+        for (std::size_t r = c + 1; r < std::size_t(K); ++r)
+            if (std::fabs(M[r][c]) > std::fabs(M[pivot][c])) pivot = r;
+        std::swap(M[c], M[pivot]);
+        for (std::size_t r = c + 1; r < std::size_t(K); ++r) {
+            const coefficient q = M[r][c] / M[c][c];
+            for (std::size_t j = c; j <= std::size_t(K); ++j) M[r][j] -= q * M[c][j];
+        }
+    }
+    std::vector<coefficient> weights(static_cast<std::size_t>(K));
+    for (std::size_t c = std::size_t(K); c-- > 0;) {
+        coefficient v = M[c][std::size_t(K)];
+        for (std::size_t j = c + 1; j < std::size_t(K); ++j) v -= M[c][j] * weights[j];
+        weights[c] = v / M[c][c];
+    }
+    return weights;
+}
+
 // What stands between the drift-kick-drift leapfrog's two half drifts (see the
 // header comment of wisdom_holman_stepper): the leapfrog's own kick, or Wisdom,
 // Holman & Touma 1996's composition kernel.
@@ -269,7 +362,7 @@ inline std::vector<substep> kernel_substeps(wh_kernel k) {
 // Options of wisdom_holman_stepper.
 struct wisdom_holman_options {
     // 0: none; 3, 5, 7, 9, 11 or 17: the symplectic corrector of that order
-    // (leapfrog tables only).
+    // (symmetric tables; corrector_weights).
     int corrector_order = 0;
     // The drift-kick-drift leapfrog's kernel; wh_kernel::composition with a
     // corrector leaves O(eps h^(2K+2) + eps^2 h^4) (leapfrog_dkd only).
@@ -300,17 +393,16 @@ inline wisdom_holman_plan plan_wisdom_holman(const table& method, const wisdom_h
                ops[2].weight == 0.5L;
     };
     if (options.corrector_order != 0) {
-        // The corrector undoes the leapfrog's own error terms (see the
-        // stepper's header comment): it is wrong for any other table.
-        if (!is(substep::kick) && !is(substep::drift))
-            throw invalid_argument(prefix + "symplectic corrector of order " + std::to_string(options.corrector_order) +
-                                   " with table '" + method.name() +
-                                   "'; expected the leapfrog, kick-drift-kick or drift-kick-drift with weights "
-                                   "1/2, 1, 1/2 (leapfrog_kdk, leapfrog_dkd)");
+        // The corrector undoes a table's error terms first order in the
+        // perturbation (see the stepper's header comment): the leapfrogs'
+        // weights are tabulated, any other symmetric table's solved for.
         try {
-            plan.corrector = corrector_weights(options.corrector_order, is(substep::kick)
-                                                                            ? leapfrog_kernel::kick_drift_kick
-                                                                            : leapfrog_kernel::drift_kick_drift);
+            if (is(substep::kick) || is(substep::drift))
+                plan.corrector = corrector_weights(options.corrector_order, is(substep::kick)
+                                                                                ? leapfrog_kernel::kick_drift_kick
+                                                                                : leapfrog_kernel::drift_kick_drift);
+            else
+                plan.corrector = corrector_weights(options.corrector_order, method);
         } catch (const invalid_argument& e) {
             throw invalid_argument(prefix + e.what());
         }
@@ -398,6 +490,15 @@ public:
     // Planets the batched drift left to its scalar solve (kepler_drift_all).
     std::uint64_t kepler_fallbacks() const { return kepler_fallbacks_; }
     void reset_counters() { kepler_drifts_ = interaction_evaluations_ = kepler_fallbacks_ = 0; }
+
+    // Steps per call the drivers of integrate.hpp should take at least: C
+    // (4K Kepler drifts and 4K - 1 interactions) is applied at every return,
+    // so chunks of 32 (8K / sub-steps per step) steps keep it under 1/32 of
+    // the run; 1 without a corrector.
+    std::size_t steps_per_check() const {
+        const std::size_t per_step = std::max<std::size_t>(1, ops_.size() - (joined_ ? 1 : 0));
+        return corrector_weights_.empty() ? 1 : 32 * 8 * corrector_weights_.size() / per_step + 1;
+    }
 
     const table& method() const { return table_; }
     const wisdom_holman_options& options() const { return options_; }
