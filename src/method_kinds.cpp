@@ -144,14 +144,16 @@ method_spec on_extended_phase_space(const std::string& name, method_kind kind, s
     return method_spec{name, kind, inner->coefficients};
 }
 
-// wh(<table>[, corrector = K][, kernel = composition]): any plain table (the
+// wh(<table>[, corrector = K][, kernel = composition|lazy][, coordinates =
+// jacobi]): any plain table (the
 // catalog's or the scene's) without force-gradient kicks; its drifts become
 // Kepler flows, its kicks the planets' interaction. The options are the
 // library's wisdom_holman_options, checked against the table as the stepper
 // checks them (plan_wisdom_holman), so a misfit is refused before any run.
 method_spec wisdom_holman(const std::string& name, const std::map<std::string, table>& inline_tables) {
     const std::string usage = "; expected wh(<a table of kicks and drifts: leapfrog_kdk, saba_2, sbab_3, ...>"
-                              "[, corrector = 3|5|7|9|11|17][, kernel = composition])";
+                              "[, corrector = 3|5|7|9|11|17][, kernel = composition|lazy]"
+                              "[, coordinates = democratic_heliocentric|jacobi])";
     std::string inner_name = name.substr(3, name.size() - 4);
     method_spec m{name, method_kind::wisdom_holman, std::nullopt};
     // Options from the right, `key = value`; what is left is the table's name
@@ -161,11 +163,11 @@ method_spec wisdom_holman(const std::string& name, const std::map<std::string, t
         const std::string option = trimmed(inner_name.substr(comma + 1));
         const auto equals = option.find('=');
         const std::string key = trimmed(option.substr(0, equals)), value = equals == std::string::npos ? "" : trimmed(option.substr(equals + 1));
-        if (key != "corrector" && key != "kernel") {
+        if (key != "corrector" && key != "kernel" && key != "coordinates") {
             // Part of an inline table's name (which may hold commas), or a misspelt option.
             if (equals != std::string::npos && !resolve_method(trimmed(inner_name), inline_tables))
                 throw invalid_argument("method '" + name + "': unknown option '" + key +
-                                       "'; expected corrector or kernel" + usage);
+                                       "'; expected corrector, kernel or coordinates" + usage);
             break;
         }
         if (equals == std::string::npos || value.empty())
@@ -175,8 +177,14 @@ method_spec wisdom_holman(const std::string& name, const std::map<std::string, t
             const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), m.corrector_order);
             if (error != std::errc{} || end != value.data() + value.size() || m.corrector_order < 1)
                 throw invalid_argument("method '" + name + "': corrector = '" + value + "'" + usage);
+        } else if (key == "coordinates") {
+            if (value == "jacobi") m.jacobi = true;
+            else if (value != "democratic_heliocentric")
+                throw invalid_argument("method '" + name + "': coordinates = '" + value + "'" + usage);
         } else if (value == "composition") {
             m.composition_kernel = true;
+        } else if (value == "lazy") {
+            m.lazy_kernel = true;
         } else if (value != "kick") {
             throw invalid_argument("method '" + name + "': kernel = '" + value + "'" + usage);
         }
@@ -189,7 +197,11 @@ method_spec wisdom_holman(const std::string& name, const std::map<std::string, t
         throw invalid_argument("method '" + name + "': '" + inner_name + "' is not a plain table" + usage);
     m.coefficients = inner->coefficients;
     const wisdom_holman_options options{.corrector_order = m.corrector_order,
-                                        .kernel = m.composition_kernel ? wh_kernel::composition : wh_kernel::kick};
+                                        .kernel = m.composition_kernel ? wh_kernel::composition
+                                                  : m.lazy_kernel      ? wh_kernel::lazy
+                                                                       : wh_kernel::kick,
+                                        .coordinates = m.jacobi ? wh_coordinates::jacobi
+                                                                : wh_coordinates::democratic_heliocentric};
     plan_wisdom_holman(*m.coefficients, options, "method '" + name + "'");  // throws naming the misfit
     return m;
 }

@@ -139,12 +139,13 @@ inline constexpr std::array<method_kind_entry, method_kind_count> method_kind_en
      .not_resumable = rkn_controlled_not_resumable,
      .description = "not symplectic: dprkn12 with its step size controlled, absolute = relative tolerance"},
     {.kind = method_kind::wisdom_holman, .label = "wisdom_holman", .requirement = needs::planetary,
-     .not_resumable = "it runs in democratic heliocentric coordinates, which a checkpoint does not hold",
-     .description = "wh(<table>[, corrector = K][, kernel = composition]): Wisdom-Holman splitting of a planetary "
-                    "system, the table's drifts the exact Kepler flow about the star, its kicks the planets' "
-                    "interaction (wisdom_holman.hpp); leapfrog_kdk, saba_2, ... (tables for T = p^2/2 lose their "
-                    "extra order here); the leapfrog takes a symplectic corrector of order K = 3, 5, 7, 9, 11 or 17, "
-                    "leapfrog_dkd the composition kernel too"},
+     .not_resumable = "it runs in democratic heliocentric or Jacobi coordinates, which a checkpoint does not hold",
+     .description = "wh(<table>[, corrector = K][, kernel = composition|lazy][, coordinates = jacobi]): "
+                    "Wisdom-Holman splitting of a planetary system, the table's drifts the exact Kepler flow about "
+                    "the star (Jacobi: about the interior masses), its kicks the planets' interaction "
+                    "(wisdom_holman.hpp); leapfrog_kdk, saba_2, ... (tables for T = p^2/2 lose their extra order "
+                    "here); a symmetric table takes a symplectic corrector of order K = 3, 5, 7, 9, 11 or 17, "
+                    "leapfrog_dkd a kernel too (lazy: Jacobi coordinates only)"},
 }};
 
 constexpr const method_kind_entry& entry_of(method_kind kind) { return method_kind_entries[std::size_t(kind)]; }
@@ -195,9 +196,11 @@ struct method_spec {
     int extrapolation_columns = 0;      // extrapolated(<table or logh(table)>, k): k > 0
     bool compensated = false;           // compensated(<table>): Kahan-summed updates
     std::size_t classic = 0;            // for kind == classic: the index in classic_methods
-    // wh(<table>, corrector = K, kernel = composition): wisdom_holman_options.
+    // wh(<table>, corrector = K, kernel = composition|lazy, coordinates = jacobi): wisdom_holman_options.
     int corrector_order = 0;            // 0: none
     bool composition_kernel = false;
+    bool lazy_kernel = false;           // Jacobi coordinates only
+    bool jacobi = false;                // wh(..., coordinates = jacobi)
 };
 
 // Whether the method's dt is a step in physical time (not a tolerance, and not

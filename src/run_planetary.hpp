@@ -2,9 +2,10 @@
 // The kind for planetary systems (run_kind<wisdom_holman>): the method's table
 // run as a Wisdom-Holman splitting (methods/wisdom_holman.hpp), its drifts the
 // exact Kepler flows about the star, its kicks the planets' interaction, in
-// democratic heliocentric coordinates that the stepper keeps between steps
-// (not resumable from a checkpoint, which holds inertial coordinates), with
-// the corrector and kernel the method names (wh(<table>, corrector = K, ...)).
+// democratic heliocentric or Jacobi coordinates that the stepper keeps between
+// steps (not resumable from a checkpoint, which holds inertial coordinates),
+// with the corrector, kernel and coordinates the method names
+// (wh(<table>, corrector = K, kernel = ..., coordinates = ...)).
 #include "run_context.hpp"
 
 namespace sympl::app::detail {
@@ -15,7 +16,10 @@ struct run_kind<method_kind::wisdom_holman> {
     static steps_and_forces run(const C& c) {
         const wisdom_holman_options options{
             .corrector_order = c.m.corrector_order,
-            .kernel = c.m.composition_kernel ? wh_kernel::composition : wh_kernel::kick};
+            .kernel = c.m.composition_kernel ? wh_kernel::composition
+                      : c.m.lazy_kernel      ? wh_kernel::lazy
+                                             : wh_kernel::kick,
+            .coordinates = c.m.jacobi ? wh_coordinates::jacobi : wh_coordinates::democratic_heliocentric};
         return c.template drive<false>(make_wisdom_holman<typename C::State>(c.sys, *c.m.coefficients, options));
     }
 };

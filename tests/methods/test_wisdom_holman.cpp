@@ -17,7 +17,9 @@
 //   (f) the composition kernel (Wisdom, Holman & Touma 1996; Rein, Tamayo &
 //       Brown 2019): with corrector 17 the eps^2 h^2 term becomes eps^2 h^4
 //       (slopes in h and in the planet masses); its sub-steps, its cost,
-//       tables refused.
+//       tables refused;
+//   (g) Jacobi coordinates (Wisdom & Holman 1991): (a) again, the leapfrog's
+//       eps h^2, the composition and lazy kernels' eps^2 h^4, the lazy one's cost.
 // Also: steps(n) against n calls of step(), the counters, and the drivers.
 #include <doctest/doctest.h>
 
@@ -138,13 +140,15 @@ V3 heliocentric_position(const State& x, std::size_t i) {
 // eps, a random walk of size sqrt(k) eps after k drifts; the phase error that
 // drives grows as n^(3/2) eps (omega h) after n steps, omega h < 1 here. The
 // bound n^1.5 eps is that, with room; a wrong weight or GM is off by far more.
+// In both coordinates (in Jacobi ones each planet is then about G m_0 (1 + 1e-20)).
 TEST_CASE("wisdom_holman: with planet masses -> 0 every planet follows its exact Kepler orbit, to rounding") {
     for (const char* name : {"leapfrog_kdk", "saba_3", "sbab_2"}) {
-        for (int which = 0; which < 2; ++which) {
-            const planetary_system s = which == 0 ? outer_solar_system(1e-20) : two_planets(1e-20);
-            const double h = which == 0 ? 50.0 : two_pi / 40;
+        for (int which = 0; which < 4; ++which) {
+            const planetary_system s = which % 2 == 0 ? outer_solar_system(1e-20) : two_planets(1e-20);
+            const double h = which % 2 == 0 ? 50.0 : two_pi / 40;
             const std::size_t n = 2000;
-            wisdom_holman_stepper<State> wh(s.mass, s.G, method(name));
+            const wh_coordinates coordinates = which < 2 ? wh_coordinates::democratic_heliocentric : wh_coordinates::jacobi;
+            wisdom_holman_stepper<State> wh(s.mass, s.G, method(name), {.coordinates = coordinates});
             State x = s.start;
             wh.steps(x, h, n);
             double worst = 0;
@@ -155,7 +159,8 @@ TEST_CASE("wisdom_holman: with planet masses -> 0 every planet follows its exact
                 kepler_drift(r, v, s.G * s.mass[0], double(n) * h);
                 worst = std::max(worst, (heliocentric_position(x, i) - r).norm() / r.norm());
             }
-            const std::string label = std::string(name) + (which == 0 ? " outer solar system" : " two planets");
+            const std::string label = std::string(name) + (which % 2 == 0 ? " outer solar system" : " two planets") + ", " +
+                                      coordinates_name(coordinates);
             MESSAGE(label << ": largest relative position error after "
                          << n << " steps = " << worst / eps << " eps, bound n^1.5 eps = " << std::pow(double(n), 1.5) << " eps");
             CHECK(worst < std::pow(double(n), 1.5) * eps);
@@ -593,7 +598,70 @@ TEST_CASE("wisdom_holman: the composition kernel in and out: first order, steps,
                          doctest::Contains("kernel composition with table 'saba_2'; expected the drift-kick-drift leapfrog"),
                          invalid_argument);
     CHECK_THROWS_WITH_AS(wisdom_holman_stepper<State>(s.mass, s.G, dkd, {.kernel = wh_kernel(7)}),
-                         doctest::Contains("wisdom_holman_stepper: kernel unknown (7); expected kick or composition"), invalid_argument);
+                         doctest::Contains("wisdom_holman_stepper: kernel unknown (7); expected kick, composition or lazy"),
+                         invalid_argument);
+    CHECK_THROWS_WITH_AS(wisdom_holman_stepper<State>(s.mass, s.G, dkd, {.corrector_order = 17, .kernel = wh_kernel::lazy}),
+                         doctest::Contains("kernel lazy in democratic_heliocentric coordinates; expected coordinates jacobi"),
+                         invalid_argument);
+    CHECK_THROWS_WITH_AS(wisdom_holman_stepper<State>(s.mass, s.G, dkd, {.coordinates = wh_coordinates(5)}),
+                         doctest::Contains("coordinates unknown (5); expected democratic_heliocentric or jacobi"),
+                         invalid_argument);
+}
+
+// Jacobi coordinates (Wisdom & Holman 1991): the leapfrog's energy error
+// O(eps h^2) as in democratic heliocentric coordinates; with corrector 17 the
+// composition kernel and the lazy implementer's kernel (Wisdom, Holman & Touma
+// 1996; Rein, Tamayo & Brown 2019) both leave O(eps^2 h^4): slopes 4 in h and
+// 2 in eps as in the test above (at h = 2 pi / 20 the slope in h is still
+// 4.2: 1/28 to 1/56 of the inner period). With the lazy kernel's displacement of the
+// wrong sign the corrected error would double instead (as for the composition
+// kernel's weights) and keep slope 2 in h. The lazy kernel costs one Kepler
+// drift and two interaction evaluations a step.
+TEST_CASE("wisdom_holman: Jacobi coordinates, with the composition and the lazy kernels") {
+    const double span = 20 * two_pi;
+    const table& dkd = method("leapfrog_dkd");
+    const auto worst = [&](const planetary_system& s, const table& t, wisdom_holman_options o, double h) {
+        return energy_errors(s, t, h, std::size_t(std::lround(span / h)), o).worst;
+    };
+    const wh_coordinates jacobi = wh_coordinates::jacobi;
+    {
+        std::vector<double> hs, errors;
+        for (double k : {25.0, 50.0, 100.0}) {
+            hs.push_back(two_pi / k);
+            errors.push_back(worst(two_planets(1e-4), method("leapfrog_kdk"), {.coordinates = jacobi}, hs.back()));
+        }
+        const double in_h = slope(hs, errors);
+        MESSAGE("Jacobi leapfrog, eps = 1e-4: errors " << errors[0] << ", " << errors[1] << ", " << errors[2]
+                                                       << " at h = 2 pi / 25, 50, 100: slope " << in_h << " (theory 2)");
+        CHECK(std::fabs(in_h - 2) < 0.15);
+    }
+    for (const wh_kernel kernel : {wh_kernel::composition, wh_kernel::lazy}) {
+        const wisdom_holman_options o{.corrector_order = 17, .kernel = kernel, .coordinates = jacobi};
+        std::vector<double> hs, with, epsilons, errors_eps;
+        for (double k : {28.0, 40.0, 56.0}) {
+            hs.push_back(two_pi / k);
+            with.push_back(worst(two_planets(1e-3), dkd, o, hs.back()));
+        }
+        for (double e : {1e-4, 3.16e-4, 1e-3}) {
+            epsilons.push_back(e);
+            errors_eps.push_back(worst(two_planets(e), dkd, o, two_pi / 40));
+        }
+        const double without = worst(two_planets(1e-3), dkd, {.corrector_order = 17, .coordinates = jacobi}, two_pi / 40);
+        const double in_h = slope(hs, with), in_eps = slope(epsilons, errors_eps);
+        MESSAGE("Jacobi, corrector 17, kernel " << kernel_name(kernel) << ", eps = 1e-3: " << with[0] << ", " << with[1]
+                << ", " << with[2] << " at h = 2 pi / 28, 40, 56: slope " << in_h << " (theory 4); at h = 2 pi / 40, "
+                << errors_eps[0] << ", " << errors_eps[1] << ", " << errors_eps[2] << " at eps = 1e-4, 3.16e-4, 1e-3: slope "
+                << in_eps << " (theory 2); without the kernel " << without);
+        CHECK(std::fabs(in_h - 4) < 0.15);
+        CHECK(std::fabs(in_eps - 2) < 0.15);
+        CHECK(without / with[1] > 10);  // c / h^2 as in the test above, h = 2 pi / 40
+    }
+    const planetary_system s = two_planets(1e-3);
+    wisdom_holman_stepper<State> lazy(s.mass, s.G, dkd, {.kernel = wh_kernel::lazy, .coordinates = jacobi});
+    State x = s.start;
+    lazy.steps(x, two_pi / 20, 100);
+    CHECK(lazy.kepler_drifts() == 100 + 1);
+    CHECK(lazy.interaction_evaluations() == 2 * 100);
 }
 
 TEST_CASE("wisdom_holman: bad input names the body") {

@@ -179,7 +179,7 @@ TEST_CASE("method kinds: wh(<table>) resolves a plain table and runs only on a p
           "outer_solar_system); this system is not one (use the table itself)");
 }
 
-TEST_CASE("method kinds: wh(<table>, corrector = K, kernel = composition) checks its options as the stepper does") {
+TEST_CASE("method kinds: wh(<table>, corrector, kernel, coordinates) checks its options as the stepper does") {
     const auto both = resolve_method("wh(leapfrog_dkd, corrector = 17, kernel = composition)", {});
     REQUIRE(both);
     CHECK(both->coefficients->name() == "leapfrog_dkd");
@@ -201,11 +201,16 @@ TEST_CASE("method kinds: wh(<table>, corrector = K, kernel = composition) checks
     refused("wh(leapfrog_kdk, corrector = 4)", "order 4; expected 3, 5, 7, 9, 11 or 17");
     refused("wh(leapfrog_kdk, corrector = 3x)", "corrector = '3x'; expected wh(<a table");
     refused("wh(leapfrog_kdk, corrector = -3)", "corrector = '-3'; expected wh(<a table");
-    refused("wh(leapfrog_dkd, kernel = lazy)", "kernel = 'lazy'; expected wh(<a table");
+    refused("wh(leapfrog_dkd, kernel = lazy)",
+            "kernel lazy in democratic_heliocentric coordinates; expected coordinates jacobi");
+    const auto lazy = resolve_method("wh(leapfrog_dkd, corrector = 17, kernel = lazy, coordinates = jacobi)", {});
+    CHECK((lazy->lazy_kernel && lazy->jacobi && !lazy->composition_kernel && lazy->corrector_order == 17));
+    refused("wh(leapfrog_dkd, kernel = leisurely)", "kernel = 'leisurely'; expected wh(<a table");
+    refused("wh(leapfrog_dkd, coordinates = heliocentric)", "coordinates = 'heliocentric'; expected wh(<a table");
     refused("wh(leapfrog_kdk, corrector)", "option 'corrector' has no value");
     refused("wh(leapfrog_kdk, corrector = 3, corrector = 5)", "'corrector' given twice");
-    refused("wh(leapfrog_kdk, order = 3)", "unknown option 'order'; expected corrector or kernel");
-    refused("wh(leapfrog_kdk, correctr = 17)", "unknown option 'correctr'; expected corrector or kernel");
+    refused("wh(leapfrog_kdk, order = 3)", "unknown option 'order'; expected corrector, kernel or coordinates");
+    refused("wh(leapfrog_kdk, correctr = 17)", "unknown option 'correctr'; expected corrector, kernel or coordinates");
     refused("wh(leapfrog_kdk, kernel = composition, krnel = kick)", "unknown option 'krnel'");
     refused("wh(leapfrog_kdk, 3)", "'leapfrog_kdk, 3' is not a plain table");
 }
@@ -246,6 +251,12 @@ TEST_CASE("method kinds: wh(leapfrog_kdk) on the outer solar system, order 2 and
     // of 4 because at h = 100 the error (1e-11) nears the reference's and the
     // runs' rounding, so the slope is held above 3.5 rather than to 0.15 of 4.
     CHECK(std::log2(kernel / kernel_half) > 3.5);
+    // The same in Jacobi coordinates with the lazy kernel.
+    const double lazy = error("wh(leapfrog_dkd, corrector = 17, kernel = lazy, coordinates = jacobi)", 200);
+    const double lazy_half = error("wh(leapfrog_dkd, corrector = 17, kernel = lazy, coordinates = jacobi)", 100);
+    MESSAGE("Jacobi, lazy kernel: h = 200: " << lazy << ", h = 100: " << lazy_half);
+    CHECK(lazy * 1e3 < plain);
+    CHECK(std::log2(lazy / lazy_half) > 3.5);
 }
 
 }  // namespace test_program_test_method_kinds
