@@ -490,6 +490,133 @@ TEST_CASE("kepler_drift: Kepler's equation carried a small step agrees with the 
     CHECK(worst_f <= 1);
 }
 
+namespace {
+// The outer planets' semi-major axes (AU) and eccentricities (Jupiter to
+// Pluto), at a random orientation and mean anomaly: the batch of a
+// Wisdom-Holman step.
+constexpr ld planet_a[5] = {5.2026L, 9.5549L, 19.2184L, 30.1104L, 39.5447L};
+constexpr ld planet_e[5] = {0.0484L, 0.0555L, 0.0464L, 0.0095L, 0.2490L};
+constexpr ld jupiter_period = 4332.6L;  // days
+
+elements random_orientation(std::mt19937_64& rng, ld gm, ld a, ld e) {
+    std::uniform_real_distribution<double> u(0, 1);
+    return {gm, a, e, pi * ld(u(rng)), 2 * pi * ld(u(rng)), 2 * pi * ld(u(rng))};
+}
+
+// |batched - exact| / |exact| for body i of b after drifting by h, in units
+// of eps (kappa + c), kappa + c as in the first test.
+double error_in_kappa(const body_set& b, std::size_t i, const V3& exact, ld gm, ld h) {
+    const V3 rb(b.x[i], b.y[i], b.z[i]);
+    const ld kappa = condition_number(b.start[i], double(gm), double(h)) + cancellation_of(b.start[i], {exact, V3::Zero()}).position;
+    return double((rb - exact).norm() / exact.norm() / (eps * kappa));
+}
+
+// The short-drift lanes run on b as kepler_drift_all runs them for 5 or 6
+// bodies (one group of 6, a 5th body's lane padded with body 0).
+detail::lane_bodies<double, 6> short_lanes(const body_set& b, double gm, double h, bool (&done)[6]) {
+    detail::lane_bodies<double, 6> lanes;
+    for (int l = 0; l < 6; ++l) {
+        const std::size_t i = std::size_t(l) < b.x.size() ? std::size_t(l) : 0;
+        lanes.x[l] = b.x[i], lanes.y[l] = b.y[i], lanes.z[l] = b.z[i];
+        lanes.vx[l] = b.vx[i], lanes.vy[l] = b.vy[i], lanes.vz[l] = b.vz[i], lanes.gm[l] = gm;
+    }
+    detail::short_drift_lanes<double, 6>(lanes, h, done);
+    return lanes;
+}
+}  // namespace
+
+TEST_CASE("kepler_drift_all: the 5 outer planets in one batch take the short-drift lanes and equal the scalar drift") {
+    // Both solves stop within 4 eps |s| of the root (solve_universal's test,
+    // which the lanes apply too) and form f and g with a few roundings each
+    // (the lanes multiply by 1/r0 and 1/r where the scalar solve divides): the
+    // two drifts differ by a few eps (kappa + c), bound 8. The lanes are
+    // checked directly too: at h up to a tenth of Jupiter's period every
+    // planet takes the short-drift path (its starter is then within 2e-3 of
+    // the root, which one quartic step brings to rounding).
+    std::mt19937_64 rng(23);
+    std::uniform_real_distribution<double> u(0, 1);
+    const ld gm = 2.95912208286e-4L;
+    for (const ld fraction : {1.0L / 20, 1.0L / 10, 1.0L / 5}) {
+        double worst = 0;
+        int short_path = 0, total = 0;
+        for (int trial = 0; trial < 2000; ++trial) {
+            body_set b;
+            for (int k = 0; k < 5; ++k)
+                b.add(state_at(random_orientation(rng, gm, planet_a[k], planet_e[k]), pi * (2 * ld(u(rng)) - 1)));
+            const double h = double(fraction * jupiter_period * (u(rng) < 0.5 ? -1 : 1));
+            bool done[6];
+            const auto lanes = short_lanes(b, double(gm), h, done);
+            for (int l = 0; l < 5; ++l) short_path += done[l] ? 1 : 0;
+            total += 5;
+            kepler_drift_all(b.view(), double(gm), h);
+            for (std::size_t i = 0; i < 5; ++i) {
+                ld_state x = b.start[i];
+                drift(x, double(gm), h);
+                if (done[i]) {  // the lanes' own result is what kepler_drift_all kept
+                    CHECK(lanes.x[i] == b.x[i]);
+                    CHECK(lanes.vz[i] == b.vz[i]);
+                }
+                worst = std::max(worst, error_in_kappa(b, i, x.r, gm, h));
+            }
+        }
+        MESSAGE("h = P_Jupiter * " << double(fraction) << ": " << short_path << " of " << total
+                                   << " drifts took the short-drift lanes; max |batched - scalar| = " << worst
+                                   << " eps (kappa + c)");
+        CHECK(worst <= 8);
+        if (fraction <= 1.0L / 10) CHECK(short_path == total);
+    }
+}
+
+TEST_CASE("kepler_drift_all: lanes the short-drift path cannot take, beside ones it takes, are still exact") {
+    // A batch of 6 (one lane group) and one of 5 with a single hard body
+    // (which goes to the scalar solve directly): outer planets, and a
+    // hyperbolic body, a nearly radial e = 0.999 orbit, and one of 11-day
+    // period drifted for 20 periods (the period reduction). Every body against
+    // the closed form, with the first test's bound 32 eps (kappa + c_fg).
+    std::mt19937_64 rng(29);
+    std::uniform_real_distribution<double> u(0, 1);
+    const ld gm = 2.95912208286e-4L, h = jupiter_period / 20;
+    struct body {
+        elements el;
+        ld M0;
+        bool hard;
+    };
+    double worst = 0;
+    int hard_left = 0, hard_total = 0, easy_taken = 0, easy_total = 0;
+    for (int trial = 0; trial < 300; ++trial) {
+        std::vector<body> six = {
+            {random_orientation(rng, gm, planet_a[0], planet_e[0]), pi * (2 * ld(u(rng)) - 1), false},
+            {random_orientation(rng, gm, -2, 3), 4 * (2 * ld(u(rng)) - 1), true},
+            {random_orientation(rng, gm, planet_a[1], planet_e[1]), pi * (2 * ld(u(rng)) - 1), false},
+            {random_orientation(rng, gm, 10, 0.999L), 0.05L * (2 * ld(u(rng)) - 1), true},
+            {random_orientation(rng, gm, 0.1L, 0.2L), pi * (2 * ld(u(rng)) - 1), true},
+            {random_orientation(rng, gm, planet_a[3], planet_e[3]), pi * (2 * ld(u(rng)) - 1), false},
+        };
+        std::vector<body> five = {six[0], six[2], six[5], six[1 + 2 * (trial % 2)], six[0]};
+        five[4] = {random_orientation(rng, gm, planet_a[2], planet_e[2]), pi * (2 * ld(u(rng)) - 1), false};
+        for (const std::vector<body>* batch : {&six, &five}) {
+            body_set b;
+            for (const body& x : *batch) b.add(state_at(x.el, x.M0));
+            bool done[6];
+            short_lanes(b, double(gm), double(h), done);  // which lanes the short-drift path takes
+            kepler_drift_all(b.view(), double(gm), double(h));
+            for (std::size_t i = 0; i < batch->size(); ++i) {
+                const body& x = (*batch)[i];
+                (x.hard ? hard_total : easy_total) += 1;
+                if (x.hard) hard_left += done[i] ? 0 : 1;
+                else easy_taken += done[i] ? 1 : 0;
+                const V3 exact = state_at(x.el, x.M0 + x.el.mean_motion() * h).r;
+                worst = std::max(worst, error_in_kappa(b, i, exact, gm, h));
+            }
+        }
+    }
+    MESSAGE("short-drift lanes left " << hard_left << " of " << hard_total << " hard bodies and took " << easy_taken
+                                      << " of " << easy_total << " planets; max error " << worst << " eps (kappa + c_fg)");
+    CHECK(hard_left == hard_total);  // the hard lanes really were left to the other solves
+    CHECK(easy_taken == easy_total);
+    CHECK(worst <= 32);
+}
+
 TEST_CASE("kepler_drift: bad input names the value and the body") {
     V3d r(1, 0, 0), v(0, 1, 0), zero = V3d::Zero();
     CHECK_THROWS_WITH_AS(kepler_drift(zero, v, 1.0, 0.1), doctest::Contains("|r| = 0"), invalid_argument);
