@@ -1,7 +1,8 @@
 // Cost of the exact Kepler drift per body: the batched kepler_drift_all
-// (lanes of kepler_lanes bodies, quartic iterations with a convergence mask)
-// against a loop of the single-body kepler_drift on the same inputs, side by
-// side in one process, in interleaved rounds (median of the rounds). Two input
+// (lanes of up to kepler_lanes bodies: the short-drift path, then quartic
+// iterations with a convergence mask for the lanes it leaves) against a loop
+// of the single-body kepler_drift on the same inputs, side by side in one
+// process, in interleaved rounds (median of the rounds). Two input
 // sets of 10^6 bodies: outer-solar-system-like orbits (e < 0.25, a = 5..40 AU,
 // GM of the Sun in AU and days, h = 1/10 of Jupiter's period down to ~180
 // days, the Wisdom-Holman case) and random elements (e in [0, 0.999], 5%
