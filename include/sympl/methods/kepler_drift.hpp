@@ -505,6 +505,17 @@ inline constexpr long double kepler_short_x = 4;
 // own (std::sqrt keeps a branch to set errno, which stops its loop from
 // vectorising); and the lanes are members of one struct, which the compiler
 // knows do not overlap.
+// All and any of several conditions, each evaluated (no short circuit: the
+// lane loops stay free of branches), as ints (clang warns of & on bools).
+template <class... B>
+constexpr bool all_of(B... b) {
+    return (int(b) & ...) != 0;
+}
+template <class... B>
+constexpr bool any_of(B... b) {
+    return (int(b) | ...) != 0;
+}
+
 template <class S, int W>
 struct lane_bodies {
     S x[W], y[W], z[W], vx[W], vy[W], vz[W], gm[W];  // one struct: the compiler sees that they do not overlap
@@ -537,7 +548,7 @@ void short_drift_lanes(lane_bodies<S, W>& b, S h, bool (&done)[W]) {
         const S fourth = A * (5 * B - 5 * AA + w / 12);
         const S fifth = AA * (14 * AA - 21 * B - w / 2) + B * (3 * B + w / 20);
         s[l] = u + u * (((fifth + fourth) + third) - A);
-        ok[l] = (std::fabs(A) + std::fabs(B) <= S(0.125)) & (std::fabs(w) <= 2) ? S(1) : S(0);
+        ok[l] = all_of(std::fabs(A) + std::fabs(B) <= S(0.125), std::fabs(w) <= 2) ? S(1) : S(0);
     }
     bool any = false;
     for (int l = 0; l < W; ++l) {
@@ -557,7 +568,7 @@ void short_drift_lanes(lane_bodies<S, W>& b, S h, bool (&done)[W]) {
     S c0[W], g1[W], g2[W], f[W], noise[W], r[W], dr[W], ddr[W];
     for (int l = 0; l < W; ++l) {
         const S ss = s[l] * s[l], y = beta[l] * ss;
-        ok[l] = (ok[l] != 0) & (std::fabs(y) <= S(kepler_short_x)) ? S(1) : S(0);
+        ok[l] = all_of(ok[l] != 0, std::fabs(y) <= S(kepler_short_x)) ? S(1) : S(0);
         S s2 = inverse_factorial[std::size_t(2 * terms)], s3 = inverse_factorial[std::size_t(2 * terms + 1)];
         for (int j = terms - 2; j >= 0; --j) {
             s2 = inverse_factorial[std::size_t(2 * j + 2)] - y * s2;
@@ -585,10 +596,10 @@ void short_drift_lanes(lane_bodies<S, W>& b, S h, bool (&done)[W]) {
         const S d1 = -f[l] * per_r[l];
         const S a2d = dr[l] * per_r[l] / 2 * d1, a3dd = ddr[l] * per_r[l] / 6 * d1 * d1;
         step[l] = d1 * (1 - a2d + (2 * a2d * a2d - a3dd));
-        const bool small = (std::fabs(a2d) <= S(0x1p-16)) & (std::fabs(a3dd) <= S(0x1p-16));
-        const bool converged = (std::fabs(f[l]) <= noise[l]) | (std::fabs(d1) <= 4 * eps * std::fabs(s[l]));
+        const bool small = all_of(std::fabs(a2d) <= S(0x1p-16), std::fabs(a3dd) <= S(0x1p-16));
+        const bool converged = any_of(std::fabs(f[l]) <= noise[l], std::fabs(d1) <= 4 * eps * std::fabs(s[l]));
         still[l] = converged ? S(0) : S(1);
-        ok[l] = (ok[l] != 0) & small ? S(1) : S(0);
+        ok[l] = all_of(ok[l] != 0, small) ? S(1) : S(0);
     }
     for (int l = 0; l < W; ++l) step[l] = still[l] != 0 ? step[l] : S(0);
     // residual_shifted at s + d (its range: |beta d^2| <= 2^-16, |d| <= |s| / 16);
@@ -604,7 +615,7 @@ void short_drift_lanes(lane_bodies<S, W>& b, S h, bool (&done)[W]) {
         const S g2n = g2[l] + (g1[l] * G1d + c0[l] * G2d);
         g1[l] = g1n;
         g2[l] = g2n;
-        ok[l] = (ok[l] != 0) & (std::fabs(y) <= S(0x1p-16)) & (16 * std::fabs(d) <= std::fabs(s[l])) ? S(1) : S(0);
+        ok[l] = all_of(ok[l] != 0, std::fabs(y) <= S(0x1p-16), 16 * std::fabs(d) <= std::fabs(s[l])) ? S(1) : S(0);
         s[l] = s[l] + d;
     }
     S per_rn[W];
@@ -625,13 +636,14 @@ void short_drift_lanes(lane_bodies<S, W>& b, S h, bool (&done)[W]) {
         ux[l] = qx, uy[l] = qy, uz[l] = qz;
     }
     for (int l = 0; l < W; ++l) {
-        const bool there = (std::fabs(f[l]) <= noise[l]) | (std::fabs(f[l] * per_rn[l]) <= 4 * eps * std::fabs(s[l]));
-        ok[l] = (ok[l] != 0) & there & (r[l] > 0) ? S(1) : S(0);
+        const bool there = any_of(std::fabs(f[l]) <= noise[l], std::fabs(f[l] * per_rn[l]) <= 4 * eps * std::fabs(s[l]));
+        ok[l] = all_of(ok[l] != 0, there, r[l] > 0) ? S(1) : S(0);
     }
     for (int l = 0; l < W; ++l) {
-        const bool finite = (std::fabs(rx[l]) <= big) & (std::fabs(ry[l]) <= big) & (std::fabs(rz[l]) <= big) &
-                            (std::fabs(ux[l]) <= big) & (std::fabs(uy[l]) <= big) & (std::fabs(uz[l]) <= big);
-        ok[l] = (ok[l] != 0) & finite ? S(1) : S(0);
+        ok[l] = all_of(ok[l] != 0, std::fabs(rx[l]) <= big, std::fabs(ry[l]) <= big, std::fabs(rz[l]) <= big,
+                       std::fabs(ux[l]) <= big, std::fabs(uy[l]) <= big, std::fabs(uz[l]) <= big)
+                    ? S(1)
+                    : S(0);
     }
     for (int l = 0; l < W; ++l) done[l] = ok[l] != 0;
 }
@@ -780,9 +792,9 @@ std::size_t kepler_drift_lanes(const kepler_bodies<S>& b, GM gm_of, S h) {
         for (std::size_t i = 0; i < n; ++i) {
             const S x = b.x[i], y = b.y[i], z = b.z[i], gm = gm_of(i);
             const S r2 = x * x + y * y + z * z;
-            fine = fine & (std::fabs(x) <= big) & (std::fabs(y) <= big) & (std::fabs(z) <= big) &
-                   (std::fabs(b.vx[i]) <= big) & (std::fabs(b.vy[i]) <= big) & (std::fabs(b.vz[i]) <= big) &
-                   (r2 > 0) & (r2 <= big) & (gm > 0) & (gm <= big);
+            fine = all_of(fine, std::fabs(x) <= big, std::fabs(y) <= big, std::fabs(z) <= big,
+                          std::fabs(b.vx[i]) <= big, std::fabs(b.vy[i]) <= big, std::fabs(b.vz[i]) <= big, r2 > 0,
+                          r2 <= big, gm > 0, gm <= big);
         }
         if (!fine)
             for (std::size_t i = 0; i < n; ++i) {
