@@ -488,7 +488,7 @@ namespace detail {
 // erred as the scalar solve did: at most 1.6 eps and 2.5 eps of |r| at
 // |w| < 0.5 and 0.5..1, 22 and 30 eps (scalar: 23 and 24) at 1..1.5 and 1.5..2,
 // where the drift is worse conditioned. |A| + |B| <= 1/8 keeps s within
-// 1.2 u (|s/u - 1| <= 1/8 + 2/64 + ...), so |x| = |beta s^2| <= 2.8; it is
+// 1.2 u (|s/u - 1| <= 1/8 + 2/64 + ...), so |x| = |beta s^2| <= 2.9; it is
 // tested against kepler_short_x, to which Stumpff's series is summed
 // directly (stumpff_terms<S>(4) terms, 12 for double) without the quarterings
 // of stumpff_lanes: fewer operations and no loop whose length depends on the
@@ -496,15 +496,6 @@ namespace detail {
 // solve divides.
 inline constexpr long double kepler_short_x = 4;
 
-// The lane loops are written so that GCC vectorises them with SSE2 (the
-// default x86-64 flags) as with AVX-512: every value is computed in every
-// lane and stored, and only then selected (an operation whose result only one
-// arm of a condition uses is moved into that arm, and as it may trap it is
-// not speculated: the loop keeps a branch); the masks are held as S, 1 or 0
-// (bools beside doubles do not vectorise); the square root has a loop of its
-// own (std::sqrt keeps a branch to set errno, which stops its loop from
-// vectorising); and the lanes are members of one struct, which the compiler
-// knows do not overlap.
 // All and any of several conditions, each evaluated (no short circuit: the
 // lane loops stay free of branches), as ints (clang warns of & on bools).
 template <class... B>
@@ -516,6 +507,15 @@ constexpr bool any_of(B... b) {
     return (int(b) | ...) != 0;
 }
 
+// The lane loops are written so that GCC vectorises them with SSE2 (the
+// default x86-64 flags) as with AVX-512: every value is computed in every
+// lane and stored, and only then selected (an operation whose result only one
+// arm of a condition uses is moved into that arm, and as it may trap it is
+// not speculated: the loop keeps a branch); the masks are held as S, 1 or 0
+// (bools beside doubles do not vectorise); the square root has a loop of its
+// own (std::sqrt keeps a branch to set errno, which stops its loop from
+// vectorising); and the lanes are members of one struct, which the compiler
+// knows do not overlap.
 template <class S, int W>
 struct lane_bodies {
     S x[W], y[W], z[W], vx[W], vy[W], vz[W], gm[W];  // one struct: the compiler sees that they do not overlap
