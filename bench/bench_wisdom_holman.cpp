@@ -9,13 +9,17 @@
 // per step and the ratio, and the largest difference of the two final states.
 // Then the composition kernel (Wisdom, Holman & Touma 1996; Rein, Tamayo &
 // Brown 2019) against the plain drift-kick-drift leapfrog, both with
-// corrector 17, at h = 200 days: ns per step and the final relative energy error.
+// corrector 17, at h = 200 days, in democratic heliocentric and in Jacobi
+// coordinates, and the lazy implementer's kernel (Jacobi only): ns per step and
+// the final relative energy error. Last, 10^6 years (10^5 with --quick) at
+// 1/20 of Jupiter's period: the largest relative energy error and the time.
 //   bench_wisdom_holman [--quick]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <utility>
 #include <vector>
 
 #include <sympl/core/hamiltonian.hpp>
@@ -149,13 +153,18 @@ int main(int argc, char** argv) {
     }
     const double hk = 200;  // days: 1/22 of Jupiter's period, where eps^2 h^2 shows
     std::printf("\nleapfrog_dkd with corrector 17, h = %g days, %zu steps (one steps() call)\n", hk, n);
-    std::printf("%-20s %12s %26s\n", "kernel", "ns/step", "final relative energy err");
+    std::printf("%-20s %-24s %12s %26s\n", "kernel", "coordinates", "ns/step", "final relative energy err");
     const double e0 = sympl::energy(sys, start);
-    for (const sympl::wh_kernel k : {sympl::wh_kernel::kick, sympl::wh_kernel::composition}) {
+    using C = sympl::wh_coordinates;
+    using K = sympl::wh_kernel;
+    const std::pair<K, C> kinds[] = {{K::kick, C::democratic_heliocentric}, {K::composition, C::democratic_heliocentric},
+                                     {K::kick, C::jacobi}, {K::composition, C::jacobi}, {K::lazy, C::jacobi}};
+    for (const auto& [k, c] : kinds) {
         std::vector<double> times;
         double error = 0;
         for (int round = 0; round < rounds; ++round) {
-            auto wh = sympl::make_wisdom_holman<State>(sys, sympl::method("leapfrog_dkd"), {.corrector_order = 17, .kernel = k});
+            auto wh = sympl::make_wisdom_holman<State>(sys, sympl::method("leapfrog_dkd"),
+                                                       {.corrector_order = 17, .kernel = k, .coordinates = c});
             State x = start;
             const double t0 = now();
             wh.steps(x, hk, n);
@@ -163,7 +172,41 @@ int main(int argc, char** argv) {
             error = std::fabs(sympl::energy(sys, x) / e0 - 1);
             sink += x.q[3];
         }
-        std::printf("%-20s %12.1f %26.1e\n", sympl::kernel_name(k).c_str(), median(times) * 1e9, error);
+        std::printf("%-20s %-24s %12.1f %26.1e\n", sympl::kernel_name(k).c_str(), sympl::coordinates_name(c).c_str(),
+                    median(times) * 1e9, error);
+    }
+    // The long run users make: 10^6 years at 1/20 of Jupiter's period, the
+    // energy looked at every 1000 steps (its largest relative error), with the
+    // whole run's time.
+    const double years = quick ? 1e5 : 1e6, hj = 4332.59 / 20, span = years * 365.25;
+    const std::size_t chunk = 1000, steps = std::size_t(span / hj) / chunk * chunk;
+    std::printf("\n%g years at h = %.1f days (1/20 of Jupiter's period), %zu steps, energy every %zu steps\n", years, hj,
+                steps, chunk);
+    std::printf("%-72s %12s %10s %24s\n", "method", "ns/step", "run [s]", "max relative energy err");
+    struct long_run {
+        const char* label;
+        const char* table;
+        sympl::wisdom_holman_options options;
+    };
+    const long_run runs[] = {
+        {"wh(leapfrog_kdk)", "leapfrog_kdk", {}},
+        {"wh(leapfrog_kdk, corrector = 17)", "leapfrog_kdk", {.corrector_order = 17}},
+        {"wh(leapfrog_dkd, corrector = 17, kernel = lazy, coordinates = jacobi)", "leapfrog_dkd",
+         {.corrector_order = 17, .kernel = K::lazy, .coordinates = C::jacobi}},
+        {"wh(blanes_2013_aba_10_6_4)", "blanes_2013_aba_10_6_4", {}},
+    };
+    for (const long_run& r : runs) {
+        auto wh = sympl::make_wisdom_holman<State>(sys, sympl::method(r.table), r.options);
+        State x = start;
+        double worst = 0;
+        const double t0 = now();
+        for (std::size_t done = 0; done < steps; done += chunk) {
+            wh.steps(x, hj, chunk);
+            worst = std::max(worst, std::fabs(sympl::energy(sys, x) / e0 - 1));
+        }
+        const double seconds = now() - t0;
+        std::printf("%-72s %12.1f %10.2f %24.2e\n", r.label, seconds / double(steps) * 1e9, seconds, worst);
+        sink += x.q[3];
     }
     std::printf("\n(checksum %g)\n", sink);
 }
