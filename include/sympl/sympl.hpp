@@ -24,6 +24,7 @@
 #include "methods/extrapolation.hpp"
 #include "methods/gauss_collocation.hpp"
 #include "methods/kepler_drift.hpp"
+#include "methods/kepler_tangent.hpp"
 #include "methods/planetary_coordinates.hpp"
 #include "methods/processing.hpp"
 #include "methods/richardson.hpp"

@@ -186,6 +186,7 @@ struct kepler_residual {
     S f, r, dr, ddr;      // t(s) - h, t' = r, t'' = r', t''' = r''
     S noise;              // rounding level of f
     S c0, g1, g2;         // G0 = c0, G1, G2 at s
+    S s;                  // the point itself
 };
 
 template <class S>
@@ -204,6 +205,7 @@ kepler_residual<S> residual_at(const kepler_orbit<S>& o, S s) {
     k.c0 = c0;
     k.g1 = g1;
     k.g2 = g2;
+    k.s = s;
     return k;
 }
 
@@ -239,6 +241,7 @@ kepler_residual<S> residual_shifted(const kepler_orbit<S>& o, const kepler_resid
     n.c0 = k.c0 - o.beta * (k.g1 * G1d + k.c0 * G2d);
     n.g1 = k.g1 + (k.c0 * G1d - o.beta * k.g1 * G2d);
     n.g2 = k.g2 + (k.g1 * G1d + k.c0 * G2d);
+    n.s = k.s + d;
     return n;
 }
 

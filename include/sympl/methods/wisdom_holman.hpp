@@ -150,6 +150,17 @@
 // corrector 17, eps = 1e-3, h = 2 pi / 40) instead of giving way to eps^2 h^4
 // (3.1e-11).
 //
+// MEGNO (Cincotta & Simo 2000, A&AS 147, 205): start_megno() puts a tangent
+// vector on the planets' coordinates in the stepper; each Kepler drift carries
+// it by the drift's exact tangent map (kepler_tangent.hpp), each kick by the
+// interaction's Jacobian (the accelerations evaluated on dual numbers,
+// dual.hpp; the jump's linear move in democratic heliocentric coordinates; the
+// lazy kernel's displaced positions included). So it is the tangent map of the
+// method itself, as for the T + V tables (chaos_indicator.hpp), and <Y> is
+// sampled every step. tests/methods/test_wisdom_holman.cpp checks the tangent
+// against differences of two runs (1e-9 relative) and <Y> on quasi-periodic
+// and chaotic orbits.
+//
 // Bad input is an invalid_argument naming the body: a non-positive or
 // non-finite mass, a non-finite coordinate, a planet at the star's position or
 // two planets at one position. A state that becomes non-finite during a run
@@ -175,10 +186,13 @@
 
 #include <Eigen/Core>
 
+#include "../analysis/chaos_indicator.hpp"
+#include "../core/dual.hpp"
 #include "../core/error.hpp"
 #include "../core/phase_space.hpp"
 #include "../core/table.hpp"
 #include "kepler_drift.hpp"
+#include "kepler_tangent.hpp"
 #include "planetary_coordinates.hpp"
 
 namespace sympl {
@@ -483,6 +497,8 @@ class wisdom_holman_stepper {
 public:
     using state_type = State;
     using scalar = typename State::scalar;
+    // The tangent vector rides as the derivative part of these (MEGNO).
+    using tangent_scalar = dual<scalar, 1>;
 
     // mass[0] is the star, mass[1..N] the planets (all finite and > 0), G > 0.
     wisdom_holman_stepper(std::vector<double> mass, double G, table method, wisdom_holman_options options = {})
@@ -523,8 +539,11 @@ public:
                 jacobi_mass_.push_back(scalar(jm[i]));
                 gm_body_.push_back(scalar(G_) * scalar(mass_[0]) * (scalar(eta[i]) / scalar(eta[i - 1])));
             }
-            for (auto* v : {&bx_, &by_, &bz_, &bax_, &bay_, &baz_}) v->assign(mass_.size(), scalar(0));
+            scratch_.resize(mass_.size());
+            tangent_scratch_.resize(mass_.size());
         }
+        for (auto* v : {&dx_, &dy_, &dz_, &dvx_, &dvy_, &dvz_}) v->assign(n, scalar(0));
+        for (int c = 0; c < 3; ++c) tq_[std::size_t(c)].assign(n, tangent_scalar(0)), ta_[std::size_t(c)] = tq_[std::size_t(c)];
     }
 
     // One step of size dt (dt < 0 runs backwards).
@@ -538,10 +557,12 @@ public:
                                    "; expected a finite, non-zero step");
         load(x, dt);
         const std::size_t L = ops_.size();
-        for (std::size_t k = 0; k < n && finite_; ++k)
+        // With MEGNO on, every step ends at its own end, where it is sampled.
+        const bool join = joined_ && !megno_on_;
+        for (std::size_t k = 0; k < n && finite_; ++k) {
             for (std::size_t j = 0; j < L && finite_; ++j) {
-                if (joined_ && k > 0 && j == 0) continue;  // done with the previous step's last sub-step
-                const scalar w = (joined_ && j == L - 1 && k + 1 < n) ? joined_weight_ : weights_[j];
+                if (join && k > 0 && j == 0) continue;  // done with the previous step's last sub-step
+                const scalar w = (join && j == L - 1 && k + 1 < n) ? joined_weight_ : weights_[j];
                 if (ops_[j].kind == substep::kick) {
                     if (lazy_) lazy_kick(w * dt, dt);
                     else kick(w * dt);
@@ -549,6 +570,8 @@ public:
                     drift(w * dt);
                 }
             }
+            if (megno_on_ && finite_) sample_megno(dt);
+        }
         store(x, dt);
     }
 
@@ -561,6 +584,53 @@ public:
     // Planets the batched drift left to its scalar solve (kepler_drift_all).
     std::uint64_t kepler_fallbacks() const { return kepler_fallbacks_; }
     void reset_counters() { kepler_drifts_ = interaction_evaluations_ = kepler_fallbacks_ = 0; }
+
+    // MEGNO (Cincotta & Simo 2000; chaos_indicator.hpp) from now on: a
+    // tangent vector of the planets' coordinates in the stepper (heliocentric
+    // or Jacobi positions and velocities, (dQ_1, dv_1, ..., dQ_N, dv_N), 6N
+    // numbers) rides along every Kepler drift (kepler_drift_tangent) and every
+    // kick (the interaction's Jacobian, by dual numbers), and ln|tangent| is
+    // sampled at the end of every step, at the time since the start. The
+    // corrector's C, a change of coordinates, is left out; the centre of mass
+    // too. `tangent` empty: every component 1 / sqrt(6N). While it is on,
+    // steps() joins no sub-steps across steps (a step ends where it is sampled),
+    // and the tangent's work is not counted in the counters.
+    void start_megno(std::span<const scalar> tangent = {}) {
+        const std::size_t n = planets();
+        if (!tangent.empty() && tangent.size() != 6 * n)
+            throw invalid_argument("wisdom_holman_stepper::start_megno: " + std::to_string(tangent.size()) +
+                                   " tangent components for " + std::to_string(n) +
+                                   " planets; expected 6 per planet (dQ, dv), " + std::to_string(6 * n));
+        scalar norm2 = 0;
+        for (std::size_t i = 0; i < n; ++i) {
+            scalar* parts[] = {&dx_[i], &dy_[i], &dz_[i], &dvx_[i], &dvy_[i], &dvz_[i]};
+            for (std::size_t c = 0; c < 6; ++c) {
+                *parts[c] = tangent.empty() ? scalar(1) / std::sqrt(scalar(6 * n)) : tangent[6 * i + c];
+                norm2 += *parts[c] * *parts[c];
+            }
+        }
+        if (!(norm2 > 0) || !std::isfinite(norm2))
+            throw invalid_argument("wisdom_holman_stepper::start_megno: |tangent|^2 = " + detail::number_text(norm2) +
+                                   "; expected a finite, non-zero tangent vector");
+        megno_ = megno_accumulator<scalar>{};
+        megno_.last_log_norm = std::log(norm2) / 2;
+        megno_time_ = 0;
+        log_scale_ = 0;
+        megno_on_ = true;
+    }
+    void stop_megno() { megno_on_ = false; }
+    // <Y> over the steps since start_megno (NaN before the first), and Y at the last.
+    scalar megno() const { return megno_.mean(); }
+    scalar megno_y() const { return megno_.y; }
+    // The tangent vector, (dQ_1, dv_1, ..., dQ_N, dv_N), in units of exp(log_scale)
+    // (the stepper rescales it when it grows past 1e100).
+    std::vector<scalar> tangent() const {
+        std::vector<scalar> t;
+        for (std::size_t i = 0; i < planets(); ++i)
+            for (scalar c : {dx_[i], dy_[i], dz_[i], dvx_[i], dvy_[i], dvz_[i]}) t.push_back(c);
+        return t;
+    }
+    scalar tangent_log_scale() const { return log_scale_; }
 
     // Steps per call the drivers of integrate.hpp should take at least: C
     // (4K Kepler drifts and 4K - 1 interactions) is applied at every return,
@@ -579,26 +649,37 @@ public:
 private:
     std::size_t planets() const { return mass_.size() - 1; }
 
-    // The interaction accelerations: democratic heliocentric,
-    // a_i = sum_{j != i} G m_j (Q_j - Q_i) / |Q_j - Q_i|^3 over the planets;
-    // Jacobi, see jacobi_accelerations().
-    void accelerations() {
-        if (jacobi_) return jacobi_accelerations();
-        const std::size_t n = planets();
-        for (std::size_t i = 0; i < n; ++i) ax_[i] = ay_[i] = az_[i] = 0;
+    // a_i = sum_{j != i} G m_j (r_j - r_i) / |r_j - r_i|^3 over n bodies of
+    // masses m[0..n), for any scalar T (double, or a dual number for the
+    // tangent map).
+    template <class T>
+    void pair_accelerations(std::size_t n, const T* x, const T* y, const T* z, const double* m, T* ax, T* ay,
+                            T* az) const {
+        using std::sqrt;
+        for (std::size_t i = 0; i < n; ++i) ax[i] = ay[i] = az[i] = T(0);
         for (std::size_t i = 0; i < n; ++i)
             for (std::size_t j = i + 1; j < n; ++j) {
-                const scalar dx = x_[j] - x_[i], dy = y_[j] - y_[i], dz = z_[j] - z_[i];
-                const scalar r2 = dx * dx + dy * dy + dz * dz;
-                const scalar k = scalar(G_) / (r2 * std::sqrt(r2));
-                const scalar ki = k * scalar(mass_[j + 1]), kj = k * scalar(mass_[i + 1]);
-                ax_[i] += ki * dx, ay_[i] += ki * dy, az_[i] += ki * dz;
-                ax_[j] -= kj * dx, ay_[j] -= kj * dy, az_[j] -= kj * dz;
+                const T dx = x[j] - x[i], dy = y[j] - y[i], dz = z[j] - z[i];
+                const T r2 = dx * dx + dy * dy + dz * dz;
+                const T k = scalar(G_) / (r2 * sqrt(r2));
+                const T ki = k * scalar(m[j]), kj = k * scalar(m[i]);
+                ax[i] += ki * dx, ay[i] += ki * dy, az[i] += ki * dz;
+                ax[j] -= kj * dx, ay[j] -= kj * dy, az[j] -= kj * dz;
             }
-        ++interaction_evaluations_;
-        forces_fresh_ = true;
     }
 
+    // All bodies' positions (less X_N) and accelerations, for the Jacobi kick.
+    template <class T>
+    struct bodies_scratch {
+        std::vector<T> x, y, z, ax, ay, az;
+        void resize(std::size_t n) {
+            for (auto* v : {&x, &y, &z, &ax, &ay, &az}) v->assign(n, T(0));
+        }
+    };
+
+    // The interaction accelerations at planet positions (x, y, z): democratic
+    // heliocentric, the planets' pairs (pair_accelerations); Jacobi, as below.
+    //
     // Jacobi coordinates (Wisdom & Holman 1991): with H_Kepler = sum_i
     // |P_i|^2 / 2m'_i - G m_0 m_i / |Q_i|, the rest H_interaction = V(x) +
     // sum_i G m_0 m_i / |Q_i|, V the potential of all pairs (the star's
@@ -610,44 +691,91 @@ private:
     //     a'_i = a_i - sum_{j < i} m_j a_j / eta_{i-1} + G M_i Q_i / |Q_i|^3,   GM_i = G m_0 eta_i / eta_{i-1}
     // (the last term the Kepler part's, which cancels a_i's pull of the
     // interior masses to leading order).
-    void jacobi_accelerations() {
+    template <class T>
+    void interaction(const T* x, const T* y, const T* z, T* ax, T* ay, T* az, bodies_scratch<T>& b) const {
+        using std::sqrt;
         const std::size_t n = planets();
-        scalar X = 0, Y = 0, Z = 0;  // X_{j-1} - X_N, from the outside in
+        if (!jacobi_) return pair_accelerations(n, x, y, z, mass_.data() + 1, ax, ay, az);
+        T X(0), Y(0), Z(0);  // X_{j-1} - X_N, from the outside in
         for (std::size_t j = n; j-- > 0;) {
             const scalar w = scalar(mass_[j + 1]) / (eta_[j] + scalar(mass_[j + 1]));
-            X -= w * x_[j], Y -= w * y_[j], Z -= w * z_[j];
-            bx_[j + 1] = x_[j] + X, by_[j + 1] = y_[j] + Y, bz_[j + 1] = z_[j] + Z;
+            X -= w * x[j], Y -= w * y[j], Z -= w * z[j];
+            b.x[j + 1] = x[j] + X, b.y[j + 1] = y[j] + Y, b.z[j + 1] = z[j] + Z;
         }
-        bx_[0] = X, by_[0] = Y, bz_[0] = Z;
-        const std::size_t bodies = n + 1;
-        for (std::size_t i = 0; i < bodies; ++i) bax_[i] = bay_[i] = baz_[i] = 0;
-        for (std::size_t i = 0; i < bodies; ++i)
-            for (std::size_t j = i + 1; j < bodies; ++j) {
-                const scalar dx = bx_[j] - bx_[i], dy = by_[j] - by_[i], dz = bz_[j] - bz_[i];
-                const scalar r2 = dx * dx + dy * dy + dz * dz;
-                const scalar k = scalar(G_) / (r2 * std::sqrt(r2));
-                const scalar ki = k * scalar(mass_[j]), kj = k * scalar(mass_[i]);
-                bax_[i] += ki * dx, bay_[i] += ki * dy, baz_[i] += ki * dz;
-                bax_[j] -= kj * dx, bay_[j] -= kj * dy, baz_[j] -= kj * dz;
-            }
-        scalar sx = scalar(mass_[0]) * bax_[0], sy = scalar(mass_[0]) * bay_[0], sz = scalar(mass_[0]) * baz_[0];
+        b.x[0] = X, b.y[0] = Y, b.z[0] = Z;
+        pair_accelerations(n + 1, b.x.data(), b.y.data(), b.z.data(), mass_.data(), b.ax.data(), b.ay.data(),
+                           b.az.data());
+        T sx = scalar(mass_[0]) * b.ax[0], sy = scalar(mass_[0]) * b.ay[0], sz = scalar(mass_[0]) * b.az[0];
         for (std::size_t i = 0; i < n; ++i) {
-            const scalar r2 = x_[i] * x_[i] + y_[i] * y_[i] + z_[i] * z_[i];
-            const scalar k = gm_body_[i] / (r2 * std::sqrt(r2)), inner = 1 / eta_[i];
-            ax_[i] = bax_[i + 1] - sx * inner + k * x_[i];
-            ay_[i] = bay_[i + 1] - sy * inner + k * y_[i];
-            az_[i] = baz_[i + 1] - sz * inner + k * z_[i];
+            const T r2 = x[i] * x[i] + y[i] * y[i] + z[i] * z[i];
+            const T k = gm_body_[i] / (r2 * sqrt(r2));
+            const scalar inner = 1 / eta_[i];
+            ax[i] = b.ax[i + 1] - sx * inner + k * x[i];
+            ay[i] = b.ay[i + 1] - sy * inner + k * y[i];
+            az[i] = b.az[i + 1] - sz * inner + k * z[i];
             const scalar m(mass_[i + 1]);
-            sx += m * bax_[i + 1], sy += m * bay_[i + 1], sz += m * baz_[i + 1];
+            sx += m * b.ax[i + 1], sy += m * b.ay[i + 1], sz += m * b.az[i + 1];
         }
+    }
+
+    void accelerations() {
+        interaction(x_.data(), y_.data(), z_.data(), ax_.data(), ay_.data(), az_.data(), scratch_);
         ++interaction_evaluations_;
         forces_fresh_ = true;
+    }
+
+    // The tangent's change of velocity over a kick of t, J dQ t with J the
+    // interaction's Jacobian at the positions (or, lazy: at the displaced
+    // positions, along the displaced tangent), from the dual numbers'
+    // derivative parts; into tx, ty, tz.
+    void tangent_kick(scalar t, scalar lazy_h) {
+        const std::size_t n = planets();
+        for (std::size_t i = 0; i < n; ++i) {
+            tq_[0][i] = tangent_dual(x_[i], dx_[i]);
+            tq_[1][i] = tangent_dual(y_[i], dy_[i]);
+            tq_[2][i] = tangent_dual(z_[i], dz_[i]);
+        }
+        interaction(tq_[0].data(), tq_[1].data(), tq_[2].data(), ta_[0].data(), ta_[1].data(), ta_[2].data(),
+                    tangent_scratch_);
+        if (lazy_h != scalar(0)) {
+            const scalar d = static_cast<scalar>(lazy_kernel_displacement) * lazy_h * lazy_h;
+            for (int c = 0; c < 3; ++c)
+                for (std::size_t i = 0; i < n; ++i) tq_[std::size_t(c)][i] += d * ta_[std::size_t(c)][i];
+            interaction(tq_[0].data(), tq_[1].data(), tq_[2].data(), ta_[0].data(), ta_[1].data(), ta_[2].data(),
+                        tangent_scratch_);
+        }
+        for (std::size_t i = 0; i < n; ++i)
+            dvx_[i] += t * ta_[0][i].grad[0], dvy_[i] += t * ta_[1][i].grad[0], dvz_[i] += t * ta_[2][i].grad[0];
+    }
+
+    static tangent_scalar tangent_dual(scalar value, scalar change) {
+        tangent_scalar d(value);
+        d.grad[0] = change;
+        return d;
+    }
+
+    bool tangent_on() const { return megno_on_ && !tangent_paused_; }
+
+    // One MEGNO sample at the end of a step of dt.
+    void sample_megno(scalar dt) {
+        scalar norm2 = 0;
+        for (std::size_t i = 0; i < planets(); ++i)
+            for (scalar c : {dx_[i], dy_[i], dz_[i], dvx_[i], dvy_[i], dvz_[i]}) norm2 += c * c;
+        megno_time_ += dt;
+        megno_.add(megno_time_, log_scale_ + std::log(norm2) / 2);
+        if (norm2 > scalar(1e200) || norm2 < scalar(1e-200)) {  // rescaled, the growth kept in log_scale_
+            const scalar f = 1 / std::sqrt(norm2);
+            for (auto* v : {&dx_, &dy_, &dz_, &dvx_, &dvy_, &dvz_})
+                for (scalar& c : *v) c *= f;
+            log_scale_ += std::log(norm2) / 2;
+        }
     }
 
     // The lazy implementer's kernel in place of the leapfrog's kick(t) (t the
     // kick's time, h the step): the kick by the accelerations at the positions
     // moved by lazy_kernel_displacement h^2 times the accelerations there.
     void lazy_kick(scalar t, scalar h) {
+        if (tangent_on()) tangent_kick(t, h);
         if (!forces_fresh_) accelerations();
         const std::size_t n = planets();
         const scalar d = static_cast<scalar>(lazy_kernel_displacement) * h * h;
@@ -666,8 +794,20 @@ private:
     // The flow of H_interaction + H_jump over t: kick, then jump (they commute).
     // In Jacobi coordinates there is no jump.
     void kick(scalar t) {
-        if (!forces_fresh_) accelerations();
         const std::size_t n = planets();
+        if (tangent_on()) {
+            tangent_kick(t, 0);
+            if (!jacobi_) {  // the jump: dQ_i += t sum_j m_j dv_j / m_0
+                scalar px = 0, py = 0, pz = 0;
+                for (std::size_t i = 0; i < n; ++i) {
+                    const scalar m(mass_[i + 1]);
+                    px += m * dvx_[i], py += m * dvy_[i], pz += m * dvz_[i];
+                }
+                const scalar s = t / scalar(mass_[0]);
+                for (std::size_t i = 0; i < n; ++i) dx_[i] += s * px, dy_[i] += s * py, dz_[i] += s * pz;
+            }
+        }
+        if (!forces_fresh_) accelerations();
         if (jacobi_) {
             for (std::size_t i = 0; i < n; ++i) vx_[i] += t * ax_[i], vy_[i] += t * ay_[i], vz_[i] += t * az_[i];
             return;
@@ -691,6 +831,18 @@ private:
 
     // The flow of H_Kepler over t.
     void kepler(scalar t) {
+        if (tangent_on() && finite_) {
+            for (std::size_t i = 0; i < planets(); ++i) {
+                const scalar r[3] = {x_[i], y_[i], z_[i]}, v[3] = {vx_[i], vy_[i], vz_[i]};
+                scalar dr[3] = {dx_[i], dy_[i], dz_[i]}, dv[3] = {dvx_[i], dvy_[i], dvz_[i]};
+                try {
+                    kepler_drift_tangent(r, v, dr, dv, jacobi_ ? gm_body_[i] : gm_, t);
+                } catch (const invalid_argument&) {
+                    for (int c = 0; c < 3; ++c) dr[c] = dv[c] = std::numeric_limits<scalar>::quiet_NaN();
+                }
+                dx_[i] = dr[0], dy_[i] = dr[1], dz_[i] = dr[2], dvx_[i] = dv[0], dvy_[i] = dv[1], dvz_[i] = dv[2];
+            }
+        }
         try {
             if (jacobi_)
                 kepler_fallbacks_ += kepler_drift_all<scalar>({x_, y_, z_, vx_, vy_, vz_}, std::span<const scalar>(gm_body_), t);
@@ -749,6 +901,9 @@ private:
     // Z(a, b)^-1 = Z(-a, b), so C^-1 is C with every c_i negated. Neighbouring
     // drifts are joined (Kepler flows add).
     void correct(int direction, scalar dt) {
+        // C is a change of coordinates, not part of the run: the tangent stays.
+        const bool paused = tangent_paused_;
+        tangent_paused_ = true;
         const std::size_t K = corrector_weights_.size();
         scalar pending = 0;  // drift time not yet applied
         const auto Z = [&](scalar a, scalar b) {
@@ -762,6 +917,7 @@ private:
         for (std::size_t i = K; i-- > 0;) Z(-alpha * scalar(i + 1), -s * corrector_weights_[i]);
         for (std::size_t i = 0; i < K; ++i) Z(alpha * scalar(i + 1), s * corrector_weights_[i]);
         kepler(pending * dt);
+        tangent_paused_ = paused;
     }
 
     // Inertial -> democratic heliocentric, unless x is what this stepper
@@ -839,7 +995,16 @@ private:
     bool jacobi_ = false, lazy_ = false;
     // Jacobi only: eta_{i-1}, m'_i and GM_i per planet; all bodies' inertial
     // positions (less X_N) and accelerations.
-    std::vector<scalar> eta_, jacobi_mass_, gm_body_, bx_, by_, bz_, bax_, bay_, baz_;
+    std::vector<scalar> eta_, jacobi_mass_, gm_body_;
+    bodies_scratch<scalar> scratch_;
+    // MEGNO: the tangent (dQ, dv) per planet, the dual positions and
+    // accelerations of its kicks, the accumulator.
+    std::vector<scalar> dx_, dy_, dz_, dvx_, dvy_, dvz_;
+    std::array<std::vector<tangent_scalar>, 3> tq_, ta_;
+    bodies_scratch<tangent_scalar> tangent_scratch_;
+    megno_accumulator<scalar> megno_;
+    scalar megno_time_ = 0, log_scale_ = 0;
+    bool megno_on_ = false, tangent_paused_ = false;
     Eigen::Matrix<scalar, 3, 1> centre_ = Eigen::Matrix<scalar, 3, 1>::Zero();
     Eigen::Matrix<scalar, 3, 1> momentum_ = Eigen::Matrix<scalar, 3, 1>::Zero();
     bool forces_fresh_ = false, loaded_ = false, finite_ = true;
