@@ -196,16 +196,18 @@ method_spec wisdom_holman(const std::string& name, const std::map<std::string, t
         inner->coefficients->has_force_gradient())
         throw invalid_argument("method '" + name + "': '" + inner_name + "' is not a plain table" + usage);
     m.coefficients = inner->coefficients;
-    const wisdom_holman_options options{.corrector_order = m.corrector_order,
-                                        .kernel = m.composition_kernel ? wh_kernel::composition
-                                                  : m.lazy_kernel      ? wh_kernel::lazy
-                                                                       : wh_kernel::kick,
-                                        .coordinates = m.jacobi ? wh_coordinates::jacobi
-                                                                : wh_coordinates::democratic_heliocentric};
-    plan_wisdom_holman(*m.coefficients, options, "method '" + name + "'");  // throws naming the misfit
+    plan_wisdom_holman(*m.coefficients, wisdom_holman_options_of(m), "method '" + name + "'");  // throws naming the misfit
     return m;
 }
 }  // namespace
+
+wisdom_holman_options wisdom_holman_options_of(const method_spec& m) {
+    return {.corrector_order = m.corrector_order,
+            .kernel = m.composition_kernel ? wh_kernel::composition
+                      : m.lazy_kernel      ? wh_kernel::lazy
+                                           : wh_kernel::kick,
+            .coordinates = m.jacobi ? wh_coordinates::jacobi : wh_coordinates::democratic_heliocentric};
+}
 
 std::optional<method_spec> resolve_method(const std::string& name, const std::map<std::string, table>& inline_tables) {
     if (name.size() > 14 && name.rfind("extrapolated(", 0) == 0 && name.back() == ')') return extrapolated(name, inline_tables);

@@ -16,6 +16,10 @@
 #include <sympl/methods/classic_steppers.hpp>
 #include <sympl/methods/processing.hpp>
 
+namespace sympl {
+struct wisdom_holman_options;  // methods/wisdom_holman.hpp
+}
+
 namespace sympl::app {
 
 enum class method_kind {
@@ -224,6 +228,11 @@ std::vector<std::string> method_names_beside_tables();
 // invalid_argument that says what is wrong.
 inline constexpr int max_extrapolation_columns = 12;
 std::optional<method_spec> resolve_method(const std::string& name, const std::map<std::string, table>& inline_tables);
+
+// The library's options for a wh(...) method: its corrector, kernel and
+// coordinates (the one place that maps them; the scene's check and the run
+// both ask it).
+wisdom_holman_options wisdom_holman_options_of(const method_spec& m);
 
 // Why a checkpointed run of `m` could not be resumed bit for bit ("" when it
 // can): tables (force-gradient ones too), plain or compensated, and the

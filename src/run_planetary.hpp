@@ -14,13 +14,8 @@ template <>
 struct run_kind<method_kind::wisdom_holman> {
     template <class C>
     static steps_and_forces run(const C& c) {
-        const wisdom_holman_options options{
-            .corrector_order = c.m.corrector_order,
-            .kernel = c.m.composition_kernel ? wh_kernel::composition
-                      : c.m.lazy_kernel      ? wh_kernel::lazy
-                                             : wh_kernel::kick,
-            .coordinates = c.m.jacobi ? wh_coordinates::jacobi : wh_coordinates::democratic_heliocentric};
-        return c.template drive<false>(make_wisdom_holman<typename C::State>(c.sys, *c.m.coefficients, options));
+        return c.template drive<false>(
+            make_wisdom_holman<typename C::State>(c.sys, *c.m.coefficients, wisdom_holman_options_of(c.m)));
     }
 };
 
