@@ -58,6 +58,12 @@ struct autodiff_kepler {
     template <class V> auto kinetic(const V& p) const { return 0.5 * p.squaredNorm(); }
     template <class V> auto potential(const V& q) const { using std::sqrt; return -1.0 / sqrt(q.squaredNorm()); }
 };
+// The FPU chain's energies alone: its force comes from reverse mode (reverse_mode.hpp).
+struct energies_only_fpu {
+    hamiltonians::fpu_beta h{};
+    template <class V> auto kinetic(const V& p) const { return h.kinetic(p); }
+    template <class V> auto potential(const V& q) const { return h.potential(q); }
+};
 // A Hamiltonian whose force returns a fresh dynamic vector allocates every step.
 struct allocating {
     template <class V> auto kinetic(const V& p) const { return 0.5 * p.squaredNorm(); }
@@ -78,6 +84,8 @@ TEST_CASE("no heap allocation per step") {
     CHECK(allocations_during_steps(hamiltonians::relativistic_pendulum{}, rel, "forest_ruth_4") == 0);
     phase_space<double> dyn_kepler(kepler0.q, kepler0.p);
     CHECK(allocations_during_steps(autodiff_kepler{}, dyn_kepler, "leapfrog_kdk") == 0);
+    // 1000 components: the force by reverse mode, whose tape keeps its memory.
+    CHECK(allocations_during_steps(energies_only_fpu{}, chain, "leapfrog_kdk") == 0);
 }
 
 TEST_CASE("the guards work: a dynamic temporary is caught") {

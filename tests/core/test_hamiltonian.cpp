@@ -91,7 +91,7 @@ TEST_CASE("hamiltonian: autodiff gradients equal analytic ones on every ready-ma
         check_gradients(hamiltonians::double_well{0.7}, q, p);
         check_gradients(hamiltonians::toda{}, q, p);
     }
-    SUBCASE("FPU-beta chain, 21 particles (chunked autodiff)") {
+    SUBCASE("FPU-beta chain, 21 particles (reverse mode)") {
         Eigen::VectorXd q(21), p(21);
         for (int i = 0; i < 21; ++i) {
             q[i] = std::sin(0.7 * i);

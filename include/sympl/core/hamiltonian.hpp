@@ -8,18 +8,21 @@
 //     velocity(p, v)   writing dT/dp into v;
 //     force(q, f)      writing -dV/dq into f, or
 //     force(q)         -> -dV/dq.
-// Whatever is missing is derived by forward-mode automatic differentiation of
-// kinetic/potential (dual.hpp), which costs about n evaluations of T or V per
-// gradient: give analytic gradients for large systems. Generic kinetic/potential
+// Whatever is missing is derived by automatic differentiation of
+// kinetic/potential: forward mode (dual.hpp) for up to 8 components (16 of a
+// fixed size), reverse mode (reverse_mode.hpp) above, whose cost per gradient does
+// not grow with n (docs/speed.md has the figures). Generic kinetic/potential
 // are evaluated once more at a stepper's first call with a new dimension, on
 // vectors that refuse a read past the state (checked_reads.hpp).
 #include <cmath>
 #include <concepts>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 #include <Eigen/Core>
 
+#include "reverse_mode.hpp"
 #include "checked_reads.hpp"
 #include "dual.hpp"
 #include "error.hpp"
@@ -102,12 +105,21 @@ constexpr int autodiff_width() {
     return (n != Eigen::Dynamic && n <= 16) ? n : 8;
 }
 
-// out = d fn / d x by forward mode, in chunks of W directions.
-// The dual workspace is reused across calls (no heap allocation once sized).
+// out = d fn / d x: by reverse mode where forward mode would take more than
+// one pass of W directions (one recording and one sweep, whatever n), else by
+// forward mode in chunks of W. Scalars that are not plain floating-point types
+// (dual numbers, SIMD batches) stay in forward mode. Workspaces are reused
+// across calls (no heap allocation once sized).
 template <class Vec, class Fn>
 void gradient(const Fn& fn, const Vec& x, Vec& out) {
     using S = scalar_of<Vec>;
     constexpr int W = autodiff_width<Vec>();
+    if constexpr (std::is_floating_point_v<S>) {
+        if (x.size() > W) {
+            reverse_gradient(fn, x, out);
+            return;
+        }
+    }
     using D = dual<S, W>;
     using DVec = rebind_vector<Vec, D>;
     thread_local DVec xd;

@@ -1,0 +1,146 @@
+// Reverse-mode gradients: every elementary function against its derivative,
+// every ready-made system's potential against its analytic force, the tape's
+// length linear in the dimension, and misuse refused.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include <sympl/core/reverse_mode.hpp>
+#include <sympl/core/error.hpp>
+#include <sympl/hamiltonians/double_well.hpp>
+#include <sympl/hamiltonians/fpu_beta.hpp>
+#include <sympl/hamiltonians/harmonic_oscillator.hpp>
+#include <sympl/hamiltonians/henon_heiles.hpp>
+#include <sympl/hamiltonians/kepler.hpp>
+#include <sympl/hamiltonians/morse.hpp>
+#include <sympl/hamiltonians/outer_solar_system.hpp>
+#include <sympl/hamiltonians/pendulum.hpp>
+#include <sympl/hamiltonians/relativistic_pendulum.hpp>
+#include <sympl/hamiltonians/stiff_fpu.hpp>
+#include <sympl/hamiltonians/toda.hpp>
+#include <sympl/hamiltonians/two_particle_spring.hpp>
+
+namespace test_core_test_reverse_mode {  // one per file: the tests build in batches (CMakeLists.txt)
+
+using namespace sympl;
+using Vec = Eigen::VectorXd;
+
+namespace {
+constexpr double eps = 2.220446049250313e-16;
+
+// -dV/dq by one recording and one sweep, against the system's analytic force.
+template <class H>
+void check_force(const H& h, const Vec& q) {
+    Vec g, f;
+    reverse_gradient([&h](const auto& x) { return h.potential(x); }, q, g);
+    h.force(q, f);
+    CAPTURE(q.size());
+    CHECK((-g - f).norm() <= 1e-14 * f.norm());
+}
+
+Vec wave(Eigen::Index n, double k, double amplitude) {
+    Vec v(n);
+    for (Eigen::Index i = 0; i < n; ++i) v[i] = amplitude * std::sin(k * double(i + 1));
+    return v;
+}
+}  // namespace
+
+TEST_CASE("reverse mode: each elementary function's derivative to rounding") {
+    // f(x0, x1) = g(x0) * x1: the x0-derivative is g'(x0) x1, the x1-derivative g(x0).
+    auto check = [](auto g, double x, double dg) {
+        Vec in(2), out;
+        in << x, 1.5;
+        reverse_gradient([&g](const auto& v) { return g(v[0]) * v[1]; }, in, out);
+        CHECK(std::abs(out[0] - 1.5 * dg) <= 8 * eps * std::abs(1.5 * dg));
+    };
+    const double x = 0.37;
+    check([](const auto& a) { using std::sqrt; return sqrt(a); }, x, 0.5 / std::sqrt(x));
+    check([](const auto& a) { using std::cbrt; return cbrt(a); }, x, 1 / (3 * std::cbrt(x) * std::cbrt(x)));
+    check([](const auto& a) { using std::exp; return exp(a); }, x, std::exp(x));
+    check([](const auto& a) { using std::expm1; return expm1(a); }, x, std::exp(x));
+    check([](const auto& a) { using std::log; return log(a); }, x, 1 / x);
+    check([](const auto& a) { using std::log1p; return log1p(a); }, x, 1 / (1 + x));
+    check([](const auto& a) { using std::sin; return sin(a); }, x, std::cos(x));
+    check([](const auto& a) { using std::cos; return cos(a); }, x, -std::sin(x));
+    check([](const auto& a) { using std::tan; return tan(a); }, x, 1 / (std::cos(x) * std::cos(x)));
+    check([](const auto& a) { using std::sinh; return sinh(a); }, x, std::cosh(x));
+    check([](const auto& a) { using std::cosh; return cosh(a); }, x, std::sinh(x));
+    check([](const auto& a) { using std::tanh; return tanh(a); }, x, 1 / (std::cosh(x) * std::cosh(x)));
+    check([](const auto& a) { using std::atan; return atan(a); }, x, 1 / (1 + x * x));
+    check([](const auto& a) { using std::asin; return asin(a); }, x, 1 / std::sqrt(1 - x * x));
+    check([](const auto& a) { using std::acos; return acos(a); }, x, -1 / std::sqrt(1 - x * x));
+    check([](const auto& a) { using std::abs; return abs(-a); }, x, 1.0);
+    check([](const auto& a) { using std::pow; return pow(a, 3.5); }, x, 3.5 * std::pow(x, 2.5));
+    check([](const auto& a) { return 2.0 / a - a / 4.0 + (3.0 - a); }, x, -2 / (x * x) - 0.25 - 1);
+    check([](const auto& a) { using std::atan2; return atan2(a, a * a + 1.0); }, x,
+          (1 - x * x) / ((x * x + 1) * (x * x + 1) + x * x));
+    check([](const auto& a) { using std::hypot; return hypot(a, 2.0 * a); }, x, std::sqrt(5.0));
+}
+
+TEST_CASE("reverse mode: a variable exponent, and branches follow the value") {
+    Vec in(2), out;
+    in << 1.7, 2.3;
+    reverse_gradient([](const auto& v) { using std::pow; return pow(v[0], v[1]); }, in, out);
+    CHECK(std::abs(out[0] - 2.3 * std::pow(1.7, 1.3)) <= 8 * eps * out[0]);
+    CHECK(std::abs(out[1] - std::pow(1.7, 2.3) * std::log(1.7)) <= 8 * eps * out[1]);
+    reverse_gradient([](const auto& v) { return v[0] > v[1] ? v[0] * v[0] : v[1] * v[1] * v[1]; }, in, out);
+    CHECK(out[0] == 0.0);
+    CHECK(std::abs(out[1] - 3 * 2.3 * 2.3) <= 4 * eps * out[1]);
+}
+
+TEST_CASE("reverse mode: the potential of every ready-made system against its analytic force") {
+    check_force(hamiltonians::harmonic_oscillator{2.0, 1.5}, wave(3, 0.9, 1.2));
+    check_force(hamiltonians::pendulum{1.5, 0.8, 9.81}, wave(1, 2.1, 1.0));
+    check_force(hamiltonians::kepler{}, wave(2, 0.7, 0.9));
+    check_force(hamiltonians::kepler{}, wave(3, 0.7, 0.9));
+    check_force(hamiltonians::relativistic_pendulum{2.0, 1.5, 0.7}, wave(3, 1.1, 2.0));
+    check_force(hamiltonians::two_particle_spring{1.5, 2.5}, wave(4, 0.6, 1.0));
+    check_force(hamiltonians::henon_heiles{}, wave(2, 0.5, 0.4));
+    check_force(hamiltonians::stiff_fpu{}, wave(6, 0.8, 0.4));
+    check_force(hamiltonians::morse{2.0, 1.5, 0.8, 0.2}, wave(3, 0.8, 1.0));
+    check_force(hamiltonians::double_well{0.7}, wave(3, 0.8, 1.3));
+    check_force(hamiltonians::toda{}, wave(3, 0.8, 1.3));
+    const hamiltonians::outer_solar_system s{};
+    check_force(s, Vec(s.initial_state().q));
+    for (Eigen::Index n : {21, 1000, 100000}) check_force(hamiltonians::fpu_beta{0.8}, wave(n, 0.7, 0.5));
+}
+
+TEST_CASE("reverse mode: one recording per gradient, its length linear in the dimension") {
+    // The cost claim behind reverse mode: the tape grows as the number of
+    // operations of one evaluation of V, here 7 per bond of the FPU chain,
+    // never as n evaluations (forward mode's cost).
+    auto& tape = detail::reverse_tape<double>::of_this_thread();
+    auto entries_per_particle = [&](Eigen::Index n) {
+        Vec g;
+        reverse_gradient([](const auto& x) { return hamiltonians::fpu_beta{1.0}.potential(x); }, wave(n, 0.3, 0.1), g);
+        return double(tape.size()) / double(n);
+    };
+    const double small = entries_per_particle(100), large = entries_per_particle(100000);
+    CHECK(small < 10);
+    CHECK(std::abs(large - small) <= 10.0 / 100);  // the two ends' bonds and the inputs only
+}
+
+TEST_CASE("reverse mode: nesting refused, a throwing function leaves the tape usable") {
+    Vec in(2), out;
+    in << 1.0, 2.0;
+    auto nested = [&](const auto& v) {
+        Vec inner;
+        reverse_gradient([](const auto& w) { return w[0] * w[1]; }, in, inner);
+        return v[0] * v[1];
+    };
+    CHECK_THROWS_WITH_AS(reverse_gradient(nested, in, out),
+                         doctest::Contains("inside another of the same scalar type; expected one at a time"),
+                         invalid_argument);
+    reverse_gradient([](const auto& v) { return v[0] * v[1]; }, in, out);
+    CHECK(out[0] == 2.0);
+    CHECK(out[1] == 1.0);
+    CHECK_THROWS_AS(reverse_gradient([](const auto& v) -> taped<double> { throw std::runtime_error("V"); return v[0]; },
+                                     in, out),
+                    std::runtime_error);
+    reverse_gradient([](const auto& v) { return v[0] * v[0] * v[1]; }, in, out);
+    CHECK(out[0] == 4.0);
+    CHECK(out[1] == 1.0);
+}
+
+}  // namespace test_core_test_reverse_mode
