@@ -15,6 +15,7 @@
 #include "core/phase_space.hpp"
 #include "core/quadratic_kinetic.hpp"
 #include "core/reverse_mode.hpp"
+#include "core/reverse_tape.hpp"
 #include "core/splitting_stepper.hpp"
 #include "core/table.hpp"
 #include "methods/adaptive.hpp"

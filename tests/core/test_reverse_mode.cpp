@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 #include <sympl/core/reverse_mode.hpp>
 #include <sympl/core/error.hpp>
@@ -84,7 +85,12 @@ TEST_CASE("reverse mode: a variable exponent, and branches follow the value") {
     reverse_gradient([](const auto& v) { using std::pow; return pow(v[0], v[1]); }, in, out);
     CHECK(std::abs(out[0] - 2.3 * std::pow(1.7, 1.3)) <= 8 * eps * out[0]);
     CHECK(std::abs(out[1] - std::pow(1.7, 2.3) * std::log(1.7)) <= 8 * eps * out[1]);
-    reverse_gradient([](const auto& v) { return v[0] > v[1] ? v[0] * v[0] : v[1] * v[1] * v[1]; }, in, out);
+    reverse_gradient(
+        [](const auto& v) {
+            using S = typename std::decay_t<decltype(v)>::Scalar;  // both branches one type (reverse_mode.hpp)
+            return v[0] > v[1] ? S(v[0] * v[0]) : S(v[1] * v[1] * v[1]);
+        },
+        in, out);
     CHECK(out[0] == 0.0);
     CHECK(std::abs(out[1] - 3 * 2.3 * 2.3) <= 4 * eps * out[1]);
 }
@@ -108,17 +114,22 @@ TEST_CASE("reverse mode: the potential of every ready-made system against its an
 
 TEST_CASE("reverse mode: one recording per gradient, its length linear in the dimension") {
     // The cost claim behind reverse mode: the tape grows as the number of
-    // operations of one evaluation of V, here 7 per bond of the FPU chain,
-    // never as n evaluations (forward mode's cost).
+    // statements of one evaluation of V, never as n evaluations (forward
+    // mode's cost). fpu_beta::potential assigns three values per bond (r, r2
+    // and the sum), each one statement however many operations it holds.
     auto& tape = detail::reverse_tape<double>::of_this_thread();
-    auto entries_per_particle = [&](Eigen::Index n) {
+    auto per_particle = [&](Eigen::Index n) {
         Vec g;
         reverse_gradient([](const auto& x) { return hamiltonians::fpu_beta{1.0}.potential(x); }, wave(n, 0.3, 0.1), g);
-        return double(tape.size()) / double(n);
+        return std::pair{double(tape.statements()) / double(n), double(tape.operations()) / double(n)};
     };
-    const double small = entries_per_particle(100), large = entries_per_particle(100000);
-    CHECK(small < 10);
-    CHECK(std::abs(large - small) <= 10.0 / 100);  // the two ends' bonds and the inputs only
+    const auto [statements_small, operations_small] = per_particle(100);
+    const auto [statements_large, operations_large] = per_particle(100000);
+    CHECK(statements_large == doctest::Approx(1 + 3).epsilon(1e-4));  // the input, and three per bond
+    // r = a - b: two; r2 = r * r: one (r twice in a row); v += r2 / 2 + r2 * r2 * k: v and r2 three times, in a row.
+    CHECK(operations_large == doctest::Approx(2 + 1 + 2).epsilon(1e-4));
+    CHECK(std::abs(statements_large - statements_small) <= 4.0 / 100);  // the ends' bonds only
+    CHECK(std::abs(operations_large - operations_small) <= 5.0 / 100);
 }
 
 TEST_CASE("reverse mode: nesting refused, a throwing function leaves the tape usable") {
