@@ -104,4 +104,15 @@ TEST_CASE("catalog_forms: coefficients computed by palindrome() match the publis
     }
 }
 
+TEST_CASE("catalog_forms: leapfrog_composition_weights() reads back the weights leapfrog_composition() was given") {
+    const composition_weights w = detail::leapfrog_composition_weights(method("yoshida_4"), "test");
+    const coefficient outer = 1 / (2 - std::cbrt(2.0L));  // Yoshida 1990, eq. 5.4
+    REQUIRE(w.gamma.size() == 3);
+    CHECK(std::fabs(static_cast<double>(w.gamma[0] - outer)) <= 1e-18);
+    CHECK(std::fabs(static_cast<double>(w.gamma[1] - (1 - 2 * outer))) <= 1e-18);
+    CHECK(w.order == 4);
+    CHECK_THROWS_WITH_AS(detail::leapfrog_composition_weights(method("pefrl_4"), "test"),
+                         doctest::Contains("expected a symmetric composition of leapfrog steps"), invalid_argument);
+}
+
 }  // namespace test_methods_test_catalog_forms

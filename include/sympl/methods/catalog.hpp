@@ -40,7 +40,8 @@ inline const std::vector<table>& catalog() {
             {detail::laskar_robutel_methods(), "near-integrable"},
             {detail::order_3_and_4_methods(), "splitting"},
             {detail::near_integrable_methods(), "near-integrable"},
-            {detail::order_5_and_6_methods(), "splitting"},
+            {detail::order_5_to_8_methods(), "splitting"},
+            {detail::order_6_methods(), "splitting"},
             {detail::order_8_and_10_methods(), "composition"}};
         std::vector<table> all;
         for (const auto& [group, family] : groups)

@@ -3,9 +3,13 @@
 // the first half of a palindrome (palindrome), the outer weights of a symmetric
 // composition of the kick-drift-kick leapfrog (leapfrog_composition), and a
 // processed leapfrog's kernel weights and processor fractions
-// (processed_leapfrog; Blanes, Casas & Murua 2024, Acta Numerica 33, 1, sec. 8).
+// (processed_leapfrog; Blanes, Casas & Murua 2024, Acta Numerica 33, 1, sec. 8);
+// and back, the weights of a table that composes leapfrog steps
+// (leapfrog_composition_weights; Yoshida 1990, Suzuki 1990).
 // The composition tools they rest on (compose, compose_symmetric, adjoint,
 // concatenate, triple_jump, suzuki_fractal) are table.hpp's.
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <utility>
 #include <vector>
@@ -14,6 +18,13 @@
 #include "processing.hpp"
 
 namespace sympl {
+
+// A table read as a symmetric composition of a second-order symmetric map.
+struct composition_weights {
+    std::vector<coefficient> gamma;  // the weights, sum 1, palindromic
+    int order = 0;                   // the table's order (0 = unknown)
+    std::string name;
+};
 
 namespace detail {
 using K = std::vector<coefficient>;
@@ -85,6 +96,33 @@ inline processed_method processed_leapfrog(std::string name, const K& kernel_out
     return make_processed(std::move(name), std::move(kernel), lf, fractions, order, std::move(citation));
 }
 
+// gamma_i of a table that composes leapfrog steps (in kick-drift-kick form its drifts; the
+// kicks are the half sums of neighbours, and in drift-kick-drift form the roles swap);
+// refuses any other table, naming it and what was expected.
+inline composition_weights leapfrog_composition_weights(const table& t, const std::string& who) {
+    const std::string expected =
+        "; expected a symmetric composition of leapfrog steps (leapfrog_kdk, triple_jump(...), suzuki_fractal(...), "
+        "yoshida_6, kahan_li_8, ...)";
+    const std::string named = who + ": table '" + t.name() + "'";
+    if (t.has_force_gradient()) throw invalid_argument(named + " has force-gradient terms" + expected);
+    if (!t.is_symmetric(1e-13L)) throw invalid_argument(named + " is not symmetric" + expected);
+    const std::vector<substep> ops = t.substeps();
+    // Symmetric and canonical: outer sub-steps of one kind, alternating, odd count.
+    composition_weights w{{}, t.order(), t.name()};
+    for (std::size_t i = 1; i < ops.size(); i += 2) w.gamma.push_back(ops[i].weight);
+    for (std::size_t i = 0; i < ops.size(); i += 2) {
+        const std::size_t k = i / 2;  // outer sub-step k sits between gamma_{k-1} and gamma_k
+        const coefficient left = k > 0 ? w.gamma[k - 1] : 0;
+        const coefficient right = k < w.gamma.size() ? w.gamma[k] : 0;
+        const coefficient want = (left + right) / 2;
+        if (std::fabs(ops[i].weight - want) > 1e-12L * std::max<coefficient>(1, std::fabs(want)))
+            throw invalid_argument(named + ": its " + (ops[i].kind == substep::kick ? "kick" : "drift") + " number " +
+                                   std::to_string(k) + " is " + format_coefficient(ops[i].weight) +
+                                   " where a composition of leapfrog steps has the half sum of its neighbours, " +
+                                   format_coefficient(want) + expected);
+    }
+    return w;
+}
 }  // namespace detail
 
 }  // namespace sympl

@@ -179,14 +179,10 @@ inline std::vector<table> near_integrable_methods() {
     };
 }
 
-inline std::vector<table> order_5_and_6_methods() {
+inline std::vector<table> order_5_to_8_methods() {  // order 5 and 6 splittings, order 8 RKN
     const std::string bm = "Blanes & Moan 2002, J. Comput. Appl. Math. 142, 313, ";
     const std::string bce = "Blanes, Casas & Escorihuela-Tomas 2022, Runge-Kutta-Nystrom symplectic splitting methods "
                             "of order 8, Appl. Numer. Math. (arXiv:2202.01541), ";
-    // Yoshida's tables print 15 digits; these 21 are the roots of his eqs.
-    // 5.4-5.17 (re-solved in the Principia project's methods table), which
-    // agree with the printed ones to their last digit or two.
-    const std::string yo = "Yoshida 1990, Phys. Lett. A 150, 262, Table 1 ";
     return {
         table("mclachlan_atela_5",
               {0.1193900292875672758L, 0.6989273703824752308L, -0.1713123582716007754L, 0.4012695022513534480L,
@@ -245,6 +241,15 @@ inline std::vector<table> order_5_and_6_methods() {
                     -0.0329844384945603065320797537355L, -0.323496751337931087309823477561L,
                     0.0476781560950366927530646289755L, 0.322817287614899749216601693799L},
                    8, bce + "Table 5 (B19)", rkn),
+    };
+}
+
+inline std::vector<table> order_6_methods() {
+    // Yoshida's tables print 15 digits; these 21 are the roots of his eqs.
+    // 5.4-5.17 (re-solved in the Principia project's methods table), which
+    // agree with the printed ones to their last digit or two.
+    const std::string yo = "Yoshida 1990, Phys. Lett. A 150, 262, Table 1 ";
+    return {
         palindrome("okunbor_skeel_6", drift_first,
                    {-1.0130879789171747298L, 0.00016600692650009894L, 1.1874295737325427070L,
                     -0.37962421426377360608L, -0.018335852096460590340L, 0.68913741185181063674L},
@@ -275,7 +280,7 @@ inline std::vector<table> order_5_and_6_methods() {
 }
 
 inline std::vector<table> order_8_and_10_methods() {
-    const std::string yo = "Yoshida 1990, Phys. Lett. A 150, 262, Table 2 ";  // digits: see order_5_and_6_methods
+    const std::string yo = "Yoshida 1990, Phys. Lett. A 150, 262, Table 2 ";  // digits: see order_6_methods
     return {
         leapfrog_composition("yoshida_8",
                              {0.914844246229642658287L, 0.253693336566286009974L, -1.44485223686030647660L,

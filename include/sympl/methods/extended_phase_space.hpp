@@ -30,6 +30,7 @@
 #include "../core/general_hamiltonian.hpp"
 #include "../core/phase_space.hpp"
 #include "../core/table.hpp"
+#include "catalog_forms.hpp"
 
 namespace sympl {
 
@@ -45,12 +46,6 @@ struct extended_state {
     explicit extended_state(const phase_space<S, Dim>& z) : q(z.q), p(z.p), x(z.q), y(z.p) {}
 };
 
-// A table read as a symmetric composition of a second-order symmetric map.
-struct composition_weights {
-    std::vector<coefficient> gamma;  // the weights, sum 1, palindromic
-    int order = 0;                   // the table's order (0 = unknown)
-    std::string name;
-};
 
 // Options of tao_stepper (Tao 2016).
 struct tao_options {
@@ -79,32 +74,6 @@ struct semiexplicit_options {
 };
 
 namespace detail {
-// gamma_i of a table that composes leapfrog steps (see the header comment);
-// refuses any other table, naming it and what was expected.
-inline composition_weights leapfrog_composition_weights(const table& t, const std::string& who) {
-    const std::string expected =
-        "; expected a symmetric composition of leapfrog steps (leapfrog_kdk, triple_jump(...), suzuki_fractal(...), "
-        "yoshida_6, kahan_li_8, ...)";
-    const std::string named = who + ": table '" + t.name() + "'";
-    if (t.has_force_gradient()) throw invalid_argument(named + " has force-gradient terms" + expected);
-    if (!t.is_symmetric(1e-13L)) throw invalid_argument(named + " is not symmetric" + expected);
-    const std::vector<substep> ops = t.substeps();
-    // Symmetric and canonical: outer sub-steps of one kind, alternating, odd count.
-    composition_weights w{{}, t.order(), t.name()};
-    for (std::size_t i = 1; i < ops.size(); i += 2) w.gamma.push_back(ops[i].weight);
-    for (std::size_t i = 0; i < ops.size(); i += 2) {
-        const std::size_t k = i / 2;  // outer sub-step k sits between gamma_{k-1} and gamma_k
-        const coefficient left = k > 0 ? w.gamma[k - 1] : 0;
-        const coefficient right = k < w.gamma.size() ? w.gamma[k] : 0;
-        const coefficient want = (left + right) / 2;
-        if (std::fabs(ops[i].weight - want) > 1e-12L * std::max<coefficient>(1, std::fabs(want)))
-            throw invalid_argument(named + ": its " + (ops[i].kind == substep::kick ? "kick" : "drift") + " number " +
-                                   std::to_string(k) + " is " + format_coefficient(ops[i].weight) +
-                                   " where a composition of leapfrog steps has the half sum of its neighbours, " +
-                                   format_coefficient(want) + expected);
-    }
-    return w;
-}
 
 template <class S>
 using primal_scalar = std::decay_t<decltype(primal(std::declval<S>()))>;
