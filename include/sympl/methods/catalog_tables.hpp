@@ -7,7 +7,7 @@
 // and every published literal appears once. Which letter a paper uses for
 // which role was settled by measuring each method's order on nonlinear
 // problems with quadratic and non-quadratic kinetic energy
-// (tests/methods/test_catalog.cpp), never by letter. For methods that are not of
+// (tests/methods/test_catalog_tables.cpp), never by letter. For methods that are not of
 // Runge-Kutta-Nystrom type the two roles can be exchanged without changing
 // the order; their outer coefficient is taken as a drift throughout, as
 // Blanes & Moan print S6.
@@ -209,7 +209,7 @@ inline std::vector<table> order_5_to_8_methods() {  // order 5 and 6 splittings,
         // Order-8 RKN methods (quadratic T). The paper names drift weights a and
         // kick weights b (its eq. 1.2: f_a = (v, 0), f_b = (0, g)); sources that copy its
         // tables disagree, and read the other way round each measures order 4
-        // (tests/methods/test_catalog.cpp). Its 30-digit values, first half by role:
+        // (tests/methods/test_catalog_tables.cpp). Its 30-digit values, first half by role:
         palindrome("blanes_casas_escorihuela_a18", drift_first,
                    {0.0866003822712445920135805954462L, -0.08L, -0.0231572735424388070228714693753L,
                     0.209460550048243262121199483001L, 0.191410576083774088999564416369L,

@@ -15,6 +15,7 @@
 #include <concepts>
 #include <cstdint>
 #include <limits>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -44,8 +45,7 @@ struct gauss_tableau {
 };
 
 inline gauss_tableau gauss_legendre_tableau(int stages) {
-    const long double r3 = 1.7320508075688772935274463415058723669428L;  // sqrt(3)
-    const long double r15 = 3.8729833462074168851792653997823996108329L; // sqrt(15)
+    const long double r3 = std::numbers::sqrt3_v<long double>, r15 = std::sqrt(15.0L);
     gauss_tableau t;
     t.stages = stages;
     t.order = 2 * stages;
