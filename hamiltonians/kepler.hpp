@@ -10,6 +10,7 @@
 
 #include <Eigen/Geometry>
 
+#include <sympl/core/dual.hpp>
 #include <sympl/core/error.hpp>
 #include <sympl/core/phase_space.hpp>
 
@@ -58,7 +59,7 @@ struct kepler {
         using std::sqrt;
         using std::fabs;
         const S ecc(e);
-        S E = (e < 0.8) ? t : S(3.14159265358979323846264338327950288L);
+        S E = (e < 0.8) ? t : pi_of<S>();
         for (int i = 0; i < 100; ++i) {
             const S dE = (E - ecc * sin(E) - t) / (1 - ecc * cos(E));
             E -= dE;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <sympl/sympl.hpp>
 #include <sympl/hamiltonians/kepler.hpp>
@@ -22,7 +23,7 @@ double kepler_precision_error() {
     using K = phase_space<S, 2>;
     K x = hamiltonians::kepler::initial_state<S>(0.5);
     auto s = make_stepper<K>(hamiltonians::kepler{}, method("sofroniou_spaletta_10"));
-    const S period = S(2) * S(3.14159265358979323846264338327950288L);
+    const S period = S(2) * std::numbers::pi_v<S>;
     integrate_until(s, x, S(0), period, S(period / S(200)));
     const K exact = hamiltonians::kepler::exact_state<S>(0.5, period);
     return double(max_difference(x, exact));
@@ -37,7 +38,7 @@ void extreme_study(const study_context& c) {
           "where lengths are scaled by L (mu -> mu L^3): relative errors are the same at every scale.\n\n"
        << "| L | max energy error | final error |\n|---|---|---|\n";
     for (double L : {1e-20, 1.0, 1e20}) {
-        const double period = 2 * std::acos(-1.0);
+        const double period = 2 * std::numbers::pi;
         const problem p = make_problem("kepler", {{"scale", L}}, {}, {}, "extreme scales");
         run_request rq;
         rq.dt = period / 2000;

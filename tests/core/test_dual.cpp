@@ -1,12 +1,15 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include <sympl/core/dual.hpp>
 
 namespace test_core_test_dual {  // one per file: the tests build in batches (CMakeLists.txt)
 
 using sympl::dual;
+using sympl::pi_of;
+using sympl::primal;
 
 TEST_CASE("dual: derivatives of elementary functions equal their closed forms") {
     const double x = 0.7;
@@ -87,6 +90,16 @@ TEST_CASE("dual: every <cmath> function a potential may use agrees with finite d
         check("sqrt", [](const auto& v) { return sqrt(v); }, x);
     }
     check("acosh", [](const auto& v) { return acosh(v); }, 1.8);
+}
+
+TEST_CASE("dual: pi_of<S>() is std::numbers' pi, and a dual number's has the primal pi and no derivative") {
+    CHECK(pi_of<double>() == std::numbers::pi);
+    CHECK(pi_of<float>() == std::numbers::pi_v<float>);
+    CHECK(pi_of<long double>() == std::numbers::pi_v<long double>);
+    const auto d = pi_of<dual<dual<long double, 2>, 1>>();
+    CHECK(primal(d) == std::numbers::pi_v<long double>);
+    CHECK(d.grad[0].value == 0);
+    CHECK(d.value.grad[1] == 0);
 }
 
 }  // namespace test_core_test_dual

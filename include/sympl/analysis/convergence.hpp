@@ -1,23 +1,12 @@
 #pragma once
 // Measured order of convergence of any method on any problem, with no
-// reference solution.
-//
-// The global error of an order-p method at a fixed time is C dt^p + ..., so the
-// difference between runs at dt and dt/2 shrinks as dt^p too, and
-// log2(d(dt) / d(dt/2)) reads p with no reference solution. The order is read
-// where three consecutive slopes agree (failing that, two within 0.15).
-//
-// Below some level the rounding of the table's own coefficients sets the
-// slope: a table typed with 16-17 digits satisfies its order conditions only
-// to ~1e-17, and its slope falls to 1 or 2 once the differences pass ~1e-21
-// (measured for Sofroniou-Spaletta 10, Kahan-Li 10, McLachlan SS17 and
-// Yoshida 8 rounded to 17 digits). That tail, a final run of low agreeing
-// slopes after higher ones, is cut off before the order is read, and the
-// result says between which differences it was read. (Above 1e-13, where a
-// double-precision run could see them, a 10th-order method is still
-// pre-asymptotic on these problems: its slopes read 8.5, 10.6 and 13.0 there.)
-// table_order.hpp runs this on the library's own nonlinear problems in 113-bit
-// precision.
+// reference solution: log2(d(dt) / d(dt/2)) of the differences between runs
+// at dt, dt/2, dt/4, ... reads the order p, where three consecutive slopes
+// agree (failing that, two within 0.15). A final run of low slopes set by the
+// rounding of a table's own coefficients is cut off first, and the result
+// says between which differences the order was read. table_order.hpp runs
+// this on the library's own problems in 113-bit precision; the rounding tail
+// and the figures behind it: docs/reliability.md.
 #include <algorithm>
 #include <cmath>
 #include <concepts>

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <concepts>
+#include <numbers>
 #include <type_traits>
 
 #include <Eigen/Core>
@@ -83,6 +84,17 @@ constexpr auto primal(const X& x) {
         return primal(x.value);
     else
         return x;
+}
+
+// pi in the scalar S: std::numbers::pi_v for a floating-point S; for a dual
+// number, its primal type's pi converted (derivative parts zero); for other
+// scalars (extended-precision classes), long double's pi converted.
+template <class S>
+constexpr S pi_of() {
+    using P = std::decay_t<decltype(primal(std::declval<S>()))>;
+    if constexpr (std::floating_point<S>) return std::numbers::pi_v<S>;
+    else if constexpr (!std::same_as<P, S>) return S(pi_of<P>());
+    else return S(std::numbers::pi_v<long double>);
 }
 
 // Scalars that mix with dual<T,N>: T itself and plain arithmetic types.

@@ -23,7 +23,7 @@
 // the double commutator is again a kick, by the gradient of F.M^-1.F, so
 //     p += kick[k] dt F(q) + 2 g_k dt^3 J_F(q) M^-1 F(q)     (J_F = dF/dq)
 // (the sign settled by measurement: with the other one Chin's 4A, g = 1/72,
-// has order 2 instead of 4; tests/methods/test_catalog.cpp). The steppers take J_F u
+// has order 2 instead of 4; tests/methods/test_catalog_tables.cpp). The steppers take J_F u
 // from force_derivative() (hamiltonian.hpp). Such a table needs quadratic T.
 #include <algorithm>
 #include <cmath>

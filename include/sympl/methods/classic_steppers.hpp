@@ -1,22 +1,15 @@
 #pragma once
-// The classic algorithms of Gould & Tobochnik (ch. 3) and Sandvik's lecture notes, on the same phase_space states as
-// the splitting stepper, for comparison and teaching:
-//   euler, euler_cromer, half_step (Gould & Tobochnik eq. 3.37), euler_richardson
-//   (eqs. 3.43-3.44) = rk2 (the midpoint method of Sandvik's lecture notes), rk4
-//   (Sandvik), velocity_verlet (eq. 3.48), leapfrog_two_step (eq. 3.47),
-//   damped_leapfrog (Sandvik, plain and corrected), predictor_corrector
-//   (Gould & Tobochnik eqs. 3.69-3.70).
-// Each runs on equations_of_motion (equations_of_motion.hpp): Newton's
-// x'' = a(x, v, t) with damping and driving, or any separable Hamiltonian
-// (make_classic wraps it). Each algorithm is a rule (its step and workspace);
-// one classic_stepper runs any rule, with step(x, t, dt) (dt < 0 runs
-// backwards), and counts the evaluations of dp/dt (force_evaluations) and dq/dt.
-//
-// Multistep methods (half-step, two-step leapfrog, damped leapfrog,
-// predictor-corrector) keep their history inside the stepper. It is used only
-// when x is bitwise the state this stepper returned last and dt is unchanged;
-// otherwise the method starts afresh with its self-starting step, so handing a
-// stepper another state is always safe.
+// The classic algorithms of Gould & Tobochnik, ch. 3 (eq. 3.xx below) and of
+// Sandvik's lecture notes, on the same phase_space states as the splitting
+// stepper, for comparison and teaching: euler, euler_cromer (eq. 3.74, M = 1),
+// euler_richardson = rk2 (eqs. 3.43-3.44; Sandvik's midpoint method), rk4
+// (Sandvik), velocity_verlet (eq. 3.48), half_step (eq. 3.37),
+// leapfrog_two_step (eq. 3.47), damped_leapfrog (Sandvik, plain and
+// corrected), predictor_corrector (eqs. 3.69-3.70).
+// Each algorithm is a rule (its step, workspace and history) run by one
+// classic_stepper (classic_stepper.hpp) over equations_of_motion: Newton's
+// x'' = a(x, v, t) or a separable Hamiltonian through make_classic.
+// Orders, energy factors and the derivations: docs/classic.md.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -27,142 +20,74 @@
 #include "../core/error.hpp"
 #include "../core/integrate.hpp"
 #include "../core/phase_space.hpp"
+#include "classic_stepper.hpp"
 
 namespace sympl {
 
 namespace detail {
-// Counts the evaluations of the right-hand sides.
-template <class System>
-struct counted_equations {
-    using system_type = System;
-    System system;
-    std::uint64_t forces = 0, velocities = 0;
-
-    template <class Vec, class T>
-    void dq_dt(const Vec& q, const Vec& p, T t, Vec& out) {
-        system.dq_dt(q, p, t, out);
-        ++velocities;
-    }
-    template <class Vec, class T>
-    void dp_dt(const Vec& q, const Vec& p, T t, Vec& out) {
-        system.dp_dt(q, p, t, out);
-        ++forces;
-    }
-};
-
-template <class State>
-void check_classic_step(const char* who, const State& x, typename State::scalar dt) {
-    using std::isfinite;
-    if (!isfinite(dt) || dt == typename State::scalar(0))
-        throw invalid_argument(std::string(who) + ": dt = " + number(dt) + "; expected a finite non-zero step size");
-    if (x.q.size() != x.p.size())
-        throw invalid_argument(std::string(who) + ": q has " + std::to_string(x.q.size()) + " components but p has " +
-                               std::to_string(x.p.size()) + "; expected equal dimensions");
+// max_i |a_i - b_i|, 0 for empty vectors.
+template <class Vec>
+auto max_abs_difference(const Vec& a, const Vec& b) {
+    return a.size() ? (a - b).cwiseAbs().maxCoeff() : typename Vec::Scalar(0);
 }
 
-// The state a multistep method returned last, to know whether its history applies.
-template <class State>
-struct step_history {
-    State last;
-    typename State::scalar dt{};
-    bool valid = false;
+// A Runge-Kutta stage: the rates (dq, dp) at x + c (dq0, dp0), time t + c.
+template <class Eq, class State, class Vec, class T>
+void rk_stage(Eq& eq, const State& x, T t, T c, const Vec& dq0, const Vec& dp0, Vec& q, Vec& p, Vec& dq, Vec& dp) {
+    q = x.q + c * dq0;
+    p = x.p + c * dp0;
+    eq.rates(q, p, t + c, dq, dp);
+}
 
-    bool continues(const State& x, typename State::scalar dt_) const {
-        return valid && dt_ == dt && x.size() == last.size() && x.q == last.q && x.p == last.p;
-    }
-    void remember(const State& x, typename State::scalar dt_) {
-        last = x;
-        dt = dt_;
-        valid = true;
-    }
-};
+// The drift and closing half kick of the Verlet forms (eqs. 3.48, 3.37b, 3.50):
+// q += dt dq/dt(q, p_half) at mid-step, then a = dp/dt at the new q with
+// velocity p_at, and p = p_half + a dt/2. `a` is the next step's a_n.
+template <class Eq, class State, class Vec, class T>
+void drift_and_half_kick(Eq& eq, State& x, const Vec& p_half, const Vec& p_at, T t, T dt, Vec& v, Vec& a) {
+    eq.dq_dt(x.q, p_half, t + dt / 2, v);
+    x.q += dt * v;
+    eq.dp_dt(x.q, p_at, t + dt, a);
+    x.p = p_half + (dt / 2) * a;
+}
+
 }  // namespace detail
-
-// One stepper for every classic algorithm: Rule<State> holds the algorithm
-// (its advance() and its workspace and history), the stepper the counted
-// system. Rule's accessors (error estimates, half-step momenta) are the stepper's.
-template <class System, class State, template <class> class Rule>
-    requires equations_of_motion<System, State>
-class classic_stepper : public Rule<State> {
-public:
-    using state_type = State;
-    using scalar = typename State::scalar;
-    using vector = typename State::vector;
-
-    template <class... Options>
-    explicit classic_stepper(System system, Options&&... options)
-        : Rule<State>(std::forward<Options>(options)...), eq_{std::move(system)} {}
-
-    void step(State& x, scalar t, scalar dt) {
-        detail::check_classic_step(Rule<State>::name, x, dt);
-        // Hamilton's equations of generic code: reads past the state refused
-        // once per dimension (checked_reads.hpp); other systems are the user's.
-        if constexpr (requires { eq_.system.hamiltonian; })
-            check_reads_once(eq_.system.hamiltonian, x, Rule<State>::name);
-        this->advance(eq_, x, t, dt);
-    }
-
-    std::uint64_t force_evaluations() const { return eq_.forces; }
-    std::uint64_t velocity_evaluations() const { return eq_.velocities; }
-    void reset_counters() { eq_.forces = eq_.velocities = 0; }
-    const System& system() const { return eq_.system; }
-
-private:
-    detail::counted_equations<System> eq_;
-};
 
 // Euler: both updates from the old state; first order, energy grows.
 template <class State>
 struct euler_rule {
     static constexpr const char* name = "euler";
     using scalar = typename State::scalar;
-    using vector = typename State::vector;
     template <class Equations>
-    void advance(Equations& eq_, State& x, scalar t, scalar dt) {
-        eq_.dq_dt(x.q, x.p, t, dq_);
-        eq_.dp_dt(x.q, x.p, t, dp_);
+    void advance(Equations& eq, State& x, scalar t, scalar dt) {
+        eq.rates(x.q, x.p, t, dq_, dp_);
         x.q += dt * dq_;
         x.p += dt * dp_;
     }
 
 private:
-    vector dq_, dp_;
+    typename State::vector dq_, dp_;
 };
-template <class System, class State>
-using euler = classic_stepper<System, State, euler_rule>;
 
-// Euler-Cromer: the position moves with the new velocity (Gould & Tobochnik, eq. 3.74
-// with M = 1); first order, energy bounded. Also catalog entry "euler_cromer".
+// Euler-Cromer (Gould & Tobochnik, eq. 3.74 with M = 1): the position moves with
+// the new velocity; first order, energy bounded. Also catalog entry "euler_cromer".
 template <class State>
 struct euler_cromer_rule {
     static constexpr const char* name = "euler_cromer";
     using scalar = typename State::scalar;
-    using vector = typename State::vector;
     template <class Equations>
-    void advance(Equations& eq_, State& x, scalar t, scalar dt) {
-        eq_.dp_dt(x.q, x.p, t, rate_);
+    void advance(Equations& eq, State& x, scalar t, scalar dt) {
+        eq.dp_dt(x.q, x.p, t, rate_);
         x.p += dt * rate_;
-        eq_.dq_dt(x.q, x.p, t + dt, rate_);
+        eq.dq_dt(x.q, x.p, t + dt, rate_);
         x.q += dt * rate_;
     }
 
 private:
-    vector rate_;
+    typename State::vector rate_;
 };
-template <class System, class State>
-using euler_cromer = classic_stepper<System, State, euler_cromer_rule>;
 
-// Euler-Richardson (Gould & Tobochnik, eqs. 3.43-3.44): the step to the midpoint by
-// Euler, then the whole step with the midpoint rates. Identical to the
-// second-order Runge-Kutta midpoint method (Sandvik's lecture notes; Gould & Tobochnik say so after eq. 3.44),
-// hence the alias rk2 below.
-//
-// Error estimate (the "bonus" after eq. 3.44): x1 is one Euler step
-// q + dt f0, x2 two Euler half steps q + dt (f0 + f_mid)/2, and 2 x2 - x1 is
-// exactly the Euler-Richardson result. |x2 - x1| = dt |f_mid - f0| / 2 is
-// Richardson's estimate of the local error of x2, and an upper bound for that
-// of the Euler-Richardson step as dt -> 0. (In pair form x1 has no a dt^2/2
-// term: eq. 3.38 with it exists only for dq/dt = p.)
+// Richardson's estimate of the local error of two Euler half steps against one
+// Euler step (the "bonus" after Gould & Tobochnik eq. 3.44; docs/classic.md).
 template <class S>
 struct local_error_estimate {
     S position{};  // max_i |x2 - x1|
@@ -170,22 +95,20 @@ struct local_error_estimate {
     S largest() const { return position > momentum ? position : momentum; }
 };
 
+// Euler-Richardson (Gould & Tobochnik, eqs. 3.43-3.44): an Euler step to the
+// midpoint, then the whole step with the midpoint rates; the second-order
+// Runge-Kutta midpoint method of Sandvik's lecture notes, hence rk2.
 template <class State>
 struct euler_richardson_rule {
     static constexpr const char* name = "euler_richardson";
     using scalar = typename State::scalar;
-    using vector = typename State::vector;
     template <class Equations>
-    void advance(Equations& eq_, State& x, scalar t, scalar dt) {
-        eq_.dq_dt(x.q, x.p, t, f0_);
-        eq_.dp_dt(x.q, x.p, t, g0_);
-        q_mid_ = x.q + (dt / 2) * f0_;
-        p_mid_ = x.p + (dt / 2) * g0_;
-        eq_.dq_dt(q_mid_, p_mid_, t + dt / 2, f_mid_);
-        eq_.dp_dt(q_mid_, p_mid_, t + dt / 2, g_mid_);
+    void advance(Equations& eq, State& x, scalar t, scalar dt) {
+        eq.rates(x.q, x.p, t, f0_, g0_);
+        detail::rk_stage(eq, x, t, dt / 2, f0_, g0_, q_mid_, p_mid_, f_mid_, g_mid_);
         using std::abs;
-        estimate_.position = x.size() ? abs(dt) / 2 * (f_mid_ - f0_).cwiseAbs().maxCoeff() : scalar(0);
-        estimate_.momentum = x.size() ? abs(dt) / 2 * (g_mid_ - g0_).cwiseAbs().maxCoeff() : scalar(0);
+        estimate_.position = abs(dt) / 2 * detail::max_abs_difference(f_mid_, f0_);
+        estimate_.momentum = abs(dt) / 2 * detail::max_abs_difference(g_mid_, g0_);
         x.q += dt * f_mid_;  // eq. 3.43
         x.p += dt * g_mid_;  // eq. 3.44
     }
@@ -194,102 +117,69 @@ struct euler_richardson_rule {
     const local_error_estimate<scalar>& last_error_estimate() const { return estimate_; }
 
 private:
-    vector f0_, g0_, q_mid_, p_mid_, f_mid_, g_mid_;
+    typename State::vector f0_, g0_, q_mid_, p_mid_, f_mid_, g_mid_;
     local_error_estimate<scalar> estimate_;
 };
-template <class System, class State>
-using euler_richardson = classic_stepper<System, State, euler_richardson_rule>;
 
-template <class System, class State>
-using rk2 = euler_richardson<System, State>;
-
-// Classic fourth-order Runge-Kutta for equations of motion (Sandvik's lecture notes, "RK
-// formulas for equations of motion"; friction enters through dp/dt).
+// Classic fourth-order Runge-Kutta for equations of motion (Sandvik's lecture
+// notes, "RK formulas for equations of motion"; friction enters through dp/dt).
 template <class State>
 struct rk4_rule {
     static constexpr const char* name = "rk4";
     using scalar = typename State::scalar;
-    using vector = typename State::vector;
     template <class Equations>
-    void advance(Equations& eq_, State& x, scalar t, scalar dt) {
-        const scalar half = dt / 2;
-        eq_.dq_dt(x.q, x.p, t, l_[0]);
-        eq_.dp_dt(x.q, x.p, t, k_[0]);
-        for (int i = 1; i < 4; ++i) {
-            const scalar c = i < 3 ? half : dt;  // k2, k3 at the midpoint; k4 at the end
-            q_ = x.q + c * l_[i - 1];
-            p_ = x.p + c * k_[i - 1];
-            eq_.dq_dt(q_, p_, t + c, l_[i]);
-            eq_.dp_dt(q_, p_, t + c, k_[i]);
-        }
+    void advance(Equations& eq, State& x, scalar t, scalar dt) {
+        eq.rates(x.q, x.p, t, l_[0], k_[0]);
+        for (int i = 1; i < 4; ++i)  // k2, k3 at the midpoint; k4 at the end
+            detail::rk_stage(eq, x, t, i < 3 ? dt / 2 : dt, l_[i - 1], k_[i - 1], q_, p_, l_[i], k_[i]);
         x.q += (dt / 6) * (l_[0] + 2 * l_[1] + 2 * l_[2] + l_[3]);
         x.p += (dt / 6) * (k_[0] + 2 * k_[1] + 2 * k_[2] + k_[3]);
     }
 
 private:
-    vector k_[4], l_[4], q_, p_;  // k: dp/dt, l: dq/dt (Sandvik's letters)
+    typename State::vector k_[4], l_[4], q_, p_;  // k: dp/dt, l: dq/dt (Sandvik's letters)
 };
-template <class System, class State>
-using rk4 = classic_stepper<System, State, rk4_rule>;
 
-// Velocity Verlet (Gould & Tobochnik, eq. 3.48): x_{n+1} = x_n + v_n dt + a_n dt^2/2,
-// v_{n+1} = v_n + (a_n + a_{n+1}) dt/2, written in pair form as
-// half kick - drift - half kick (the KDK leapfrog). One force per step when
-// dp/dt does not depend on p (a_{n+1} is the next a_n). When it does,
-// eq. 3.48b is implicit in v_{n+1}: a_{n+1} takes the Euler-predicted
-// velocity v_n + a_n dt, whose O(dt^2) error keeps the method second order.
+// Velocity Verlet (Gould & Tobochnik, eq. 3.48) as half kick - drift - half kick.
+// One force per step when dp/dt does not depend on p; when it does, eq. 3.48b
+// is implicit and a_{n+1} takes the Euler-predicted velocity v_n + a_n dt.
 template <class State>
 struct velocity_verlet_rule {
     static constexpr const char* name = "velocity_verlet";
     using scalar = typename State::scalar;
-    using vector = typename State::vector;
     template <class Equations>
-    void advance(Equations& eq_, State& x, scalar t, scalar dt) {
+    void advance(Equations& eq, State& x, scalar t, scalar dt) {
         constexpr bool reuses_force = !force_depends_on_velocity<typename Equations::system_type>();
-        if (!(reuses_force && history_.continues(x, dt))) eq_.dp_dt(x.q, x.p, t, a_);
+        if (!(reuses_force && history_.continues(x, dt))) eq.dp_dt(x.q, x.p, t, a_);
         p_half_ = x.p + (dt / 2) * a_;
-        eq_.dq_dt(x.q, p_half_, t + dt / 2, v_);
-        x.q += dt * v_;  // eq. 3.48a
-        if constexpr (reuses_force) {
-            eq_.dp_dt(x.q, p_half_, t + dt, a_);
-        } else {
-            p_predicted_ = x.p + dt * a_;
-            eq_.dp_dt(x.q, p_predicted_, t + dt, a_);
-        }
-        x.p = p_half_ + (dt / 2) * a_;  // eq. 3.48b
+        if constexpr (!reuses_force) p_predicted_ = x.p + dt * a_;
+        detail::drift_and_half_kick(eq, x, p_half_, reuses_force ? p_half_ : p_predicted_, t, dt, v_, a_);
         if constexpr (reuses_force) history_.remember(x, dt);
     }
 
 private:
-    vector a_, p_half_, v_, p_predicted_;
+    typename State::vector a_, p_half_, v_, p_predicted_;
     detail::step_history<State> history_;
 };
-template <class System, class State>
-using velocity_verlet = classic_stepper<System, State, velocity_verlet_rule>;
 
 // Half-step algorithm (Gould & Tobochnik, eq. 3.37): v_{n+1/2} = v_{n-1/2} + a_n dt,
-// x_{n+1} = x_n + v_{n+1/2} dt, started with the Euler half step
-// v_{1/2} = v_0 + a_0 dt/2 (eq. 3.37c). The velocity reported at t_{n+1} is
-// v_{n+1/2} + a_{n+1} dt/2, where a_{n+1} is the force the next step needs
-// anyway: one force per step. A velocity-dependent a_n is taken at v_{n-1/2},
-// the plain treatment of Sandvik's lecture notes, which costs an order (see damped_leapfrog).
+// x_{n+1} = x_n + v_{n+1/2} dt, started by v_{1/2} = v_0 + a_0 dt/2 (eq. 3.37c);
+// the velocity reported is v_{n+1/2} + a_{n+1} dt/2. A velocity-dependent a_n
+// is taken at v_{n-1/2} (Sandvik's plain treatment; it costs an order).
 template <class State>
 struct half_step_rule {
     static constexpr const char* name = "half_step";
     using scalar = typename State::scalar;
     using vector = typename State::vector;
     template <class Equations>
-    void advance(Equations& eq_, State& x, scalar t, scalar dt) {
+    void advance(Equations& eq, State& x, scalar t, scalar dt) {
         if (history_.continues(x, dt)) {
             p_half_ += dt * a_;  // eq. 3.37a, a_ = a(x_n, v_{n-1/2}, t_n) from the last step
         } else {
-            eq_.dp_dt(x.q, x.p, t, a_);
+            eq.dp_dt(x.q, x.p, t, a_);
             p_half_ = x.p + (dt / 2) * a_;  // eq. 3.37c
         }
-        eq_.dq_dt(x.q, p_half_, t + dt / 2, v_);
-        x.q += dt * v_;  // eq. 3.37b
-        eq_.dp_dt(x.q, p_half_, t + dt, a_);
-        x.p = p_half_ + (dt / 2) * a_;
+        detail::drift_and_half_kick(eq, x, p_half_, p_half_, t, dt, v_, a_);  // eq. 3.37b
         history_.remember(x, dt);
     }
 
@@ -300,17 +190,12 @@ private:
     vector a_, p_half_, v_;
     detail::step_history<State> history_;
 };
-template <class System, class State>
-using half_step = classic_stepper<System, State, half_step_rule>;
 
-// Leapfrog in the two-step position form (Gould & Tobochnik, eq. 3.47a; Sandvik's lecture notes):
-// x_{n+1} = 2 x_n - x_{n-1} + a_n dt^2. Self-starting: a fresh start takes
-// x_{-1} from the backward Taylor step (eq. 3.45), which makes the first step
-// eq. 3.48a. The velocity reported with x_{n+1} is eq. 3.50,
-// (x_{n+1} - x_n)/dt + a_{n+1} dt/2 (a_{n+1} is the next step's a_n);
-// central_difference_velocity() is eq. 3.47b, v_n = (x_{n+1} - x_{n-1})/(2 dt).
-// A velocity-dependent a_n is taken at v_{n-1/2} = (x_n - x_{n-1})/dt, the
-// plain treatment of Sandvik's lecture notes.
+// Leapfrog in the two-step position form (Gould & Tobochnik, eq. 3.47a; Sandvik's
+// lecture notes): x_{n+1} = 2 x_n - x_{n-1} + a_n dt^2, started by the backward
+// Taylor step (eq. 3.45). The velocity reported is eq. 3.50; eq. 3.47b's central
+// difference, one step behind, is central_difference_velocity(). A
+// velocity-dependent a_n is taken at v_{n-1/2} = (x_n - x_{n-1})/dt (Sandvik).
 template <class State>
 struct leapfrog_two_step_rule {
     static constexpr const char* name = "leapfrog_two_step";
@@ -318,9 +203,9 @@ struct leapfrog_two_step_rule {
     using vector = typename State::vector;
     template <class Equations>
         requires newtonian_form<typename Equations::system_type>
-    void advance(Equations& eq_, State& x, scalar t, scalar dt) {
+    void advance(Equations& eq, State& x, scalar t, scalar dt) {
         if (!history_.continues(x, dt)) {
-            eq_.dp_dt(x.q, x.p, t, a_);
+            eq.dp_dt(x.q, x.p, t, a_);
             x_previous_ = x.q - dt * x.p + (dt * dt / 2) * a_;  // eq. 3.45
         }
         x_next_ = 2 * x.q - x_previous_ + (dt * dt) * a_;  // eq. 3.47a
@@ -329,7 +214,7 @@ struct leapfrog_two_step_rule {
         x_previous_ = x.q;
         x.q = x_next_;
         v_half_ = (x.q - x_previous_) / dt;
-        eq_.dp_dt(x.q, v_half_, t + dt, a_);
+        eq.dp_dt(x.q, v_half_, t + dt, a_);
         x.p = v_half_ + (dt / 2) * a_;  // eq. 3.50
         history_.remember(x, dt);
     }
@@ -343,37 +228,28 @@ private:
     scalar central_time_{};
     detail::step_history<State> history_;
 };
-template <class System, class State>
-using leapfrog_two_step = classic_stepper<System, State, leapfrog_two_step_rule>;
 
-// Leapfrog with a velocity-dependent force m a = F(x, t) - G(v) (Sandvik's lecture notes,
-// "Leapfrog/Verlet method including damping"), in the half-step form
-// v_{n+1/2} = v_{n-1/2} + a_n dt, x_{n+1} = x_n + v_{n+1/2} dt.
-//   plain:     a_n = [F(x_n, t_n) - G(v_{n-1/2})]/m; the O(dt) error of that
-//              velocity makes x's step error O(dt^3): first order globally.
-//   corrected: v^_{n+1/2} = v_{n-1/2} + dt [F_n - G(v_{n-1/2})]/m,
-//              x^_{n+1} = x_n + dt v^_{n+1/2}, v_n = (x^_{n+1} - x_{n-1})/(2 dt),
-//              a_n = [F_n - G(v_n)]/m: second order restored, one F and two G per step.
-// Started from (x_0, v_0) with a_0 at the known v_0 and v_{1/2} by eq. 3.37c.
-// The velocity reported at t_{n+1} is v_{n+1/2} + dt [F_{n+1} - G(v_{n+1/2})]/(2m),
-// both forces being the next step's.
+// Leapfrog with a velocity-dependent force m a = F(x, t) - G(v) (Sandvik's
+// lecture notes, "Leapfrog/Verlet method including damping") in the half-step
+// form: plain takes G at v_{n-1/2} (first order); corrected takes it at the
+// central-difference v_n of a predicted x^_{n+1} (second order, one F and two
+// G per step). Formulas: docs/classic.md.
 enum class damping_treatment { plain, corrected };
 
 template <class State>
 struct damped_leapfrog_rule {
     static constexpr const char* name = "damped_leapfrog";
     using scalar = typename State::scalar;
-    using vector = typename State::vector;
     explicit damped_leapfrog_rule(damping_treatment treatment = damping_treatment::corrected) : treatment_(treatment) {}
 
     template <class Equations>
         requires damped_newtonian_form<typename Equations::system_type, State>
-    void advance(Equations& eq_, State& x, scalar t, scalar dt) {
-        const auto& s = eq_.system;
+    void advance(Equations& eq, State& x, scalar t, scalar dt) {
+        const auto& s = eq.system;
         const scalar inv_m = scalar(1) / scalar(s.mass);
         if (!history_.continues(x, dt)) {
             s.force(x.q, t, force_);
-            ++eq_.forces;
+            ++eq.forces;
             s.drag(x.p, drag_);
             v_half_ = x.p + (dt / 2 * inv_m) * (force_ - drag_);  // eq. 3.37c
         } else {
@@ -389,7 +265,7 @@ struct damped_leapfrog_rule {
         x_previous_ = x.q;
         x.q += dt * v_half_;
         s.force(x.q, t + dt, force_);
-        ++eq_.forces;
+        ++eq.forces;
         s.drag(v_half_, drag_);
         x.p = v_half_ + (dt / 2 * inv_m) * (force_ - drag_);
         history_.remember(x, dt);
@@ -399,19 +275,15 @@ struct damped_leapfrog_rule {
 
 private:
     damping_treatment treatment_;
-    vector force_, drag_, v_half_, v_hat_, x_hat_, v_n_, x_previous_;
+    typename State::vector force_, drag_, v_half_, v_hat_, x_hat_, v_n_, x_previous_;
     detail::step_history<State> history_;
 };
-template <class System, class State>
-using damped_leapfrog = classic_stepper<System, State, damped_leapfrog_rule>;
 
-// Predictor-corrector (Gould & Tobochnik, eqs. 3.69-3.70): predict x_p = x_{n-1} + 2 v_n dt
-// (and likewise v_p = v_{n-1} + 2 a_n dt, for velocity-dependent forces), then
-// correct v_{n+1} = v_n + (a_p + a_n) dt/2, x_{n+1} = x_n + (v_{n+1} + v_n) dt/2,
-// and repeat with the corrected values until two successive positions and
-// velocities differ by less than tolerance * (1 + max|x|). Converged, this is
-// the trapezoidal rule: second order, symmetric. A fresh start takes x_{-1}
-// from one backward Euler step; only the number of iterations depends on it.
+// Predictor-corrector (Gould & Tobochnik, eqs. 3.69-3.70): predict from x_{n-1}
+// and the rates at x_n, correct by the trapezoidal rule, and repeat until two
+// successive corrections differ by less than tolerance * (1 + max|x|).
+// Converged, this is the trapezoidal rule: second order, symmetric. A fresh
+// start takes x_{-1} from one backward Euler step.
 struct predictor_corrector_options {
     double tolerance = 1e-12;
     int max_iterations = 50;
@@ -421,7 +293,6 @@ template <class State>
 struct predictor_corrector_rule {
     static constexpr const char* name = "predictor_corrector";
     using scalar = typename State::scalar;
-    using vector = typename State::vector;
     explicit predictor_corrector_rule(predictor_corrector_options options = {}) : options_(options) {
         if (!(options.tolerance > 0) || !std::isfinite(options.tolerance))
             throw invalid_argument("predictor_corrector: tolerance = " + detail::number(options.tolerance) +
@@ -432,32 +303,15 @@ struct predictor_corrector_rule {
     }
 
     template <class Equations>
-    void advance(Equations& eq_, State& x, scalar t, scalar dt) {
-        eq_.dq_dt(x.q, x.p, t, f_n_);
-        eq_.dp_dt(x.q, x.p, t, g_n_);
+    void advance(Equations& eq, State& x, scalar t, scalar dt) {
+        eq.rates(x.q, x.p, t, f_n_, g_n_);
         if (!history_.continues(x, dt)) {
             q_previous_ = x.q - dt * f_n_;
             p_previous_ = x.p - dt * g_n_;
         }
         q_ = q_previous_ + (2 * dt) * f_n_;  // eq. 3.69
         p_ = p_previous_ + (2 * dt) * g_n_;
-        using std::abs;
-        scalar change = 0;
-        for (iterations_ = 1; iterations_ <= options_.max_iterations; ++iterations_) {
-            eq_.dp_dt(q_, p_, t + dt, g_);
-            p_corrected_ = x.p + (dt / 2) * (g_n_ + g_);  // eq. 3.70a
-            eq_.dq_dt(q_, p_corrected_, t + dt, f_);
-            q_corrected_ = x.q + (dt / 2) * (f_n_ + f_);  // eq. 3.70b
-            change = x.size() ? std::max((q_corrected_ - q_).cwiseAbs().maxCoeff(),
-                                         (p_corrected_ - p_).cwiseAbs().maxCoeff())
-                              : scalar(0);
-            q_.swap(q_corrected_);
-            p_.swap(p_corrected_);
-            using std::isfinite;
-            if (!isfinite(change)) break;  // blown up: the driver reports where
-            const scalar scale = 1 + (x.size() ? q_.cwiseAbs().maxCoeff() : scalar(0));
-            if (change <= scalar(options_.tolerance) * scale) break;
-        }
+        const scalar change = correct(eq, x, t, dt);
         if (iterations_ > options_.max_iterations) {
             iterations_ = options_.max_iterations;
             throw integration_error("predictor_corrector: no convergence in " +
@@ -480,20 +334,43 @@ struct predictor_corrector_rule {
     const predictor_corrector_options& options() const { return options_; }
 
 private:
+    // Eq. 3.70 iterated on (q_, p_) until the change is below the tolerance;
+    // iterations_ > max_iterations when it is not. Returns the last change.
+    template <class Equations>
+    scalar correct(Equations& eq, const State& x, scalar t, scalar dt) {
+        scalar change = 0;
+        for (iterations_ = 1; iterations_ <= options_.max_iterations; ++iterations_) {
+            eq.dp_dt(q_, p_, t + dt, g_);
+            p_corrected_ = x.p + (dt / 2) * (g_n_ + g_);  // eq. 3.70a
+            eq.dq_dt(q_, p_corrected_, t + dt, f_);
+            q_corrected_ = x.q + (dt / 2) * (f_n_ + f_);  // eq. 3.70b
+            change = std::max(detail::max_abs_difference(q_corrected_, q_), detail::max_abs_difference(p_corrected_, p_));
+            q_.swap(q_corrected_);
+            p_.swap(p_corrected_);
+            using std::isfinite;
+            if (!isfinite(change)) break;  // blown up: the driver reports where
+            const scalar scale = 1 + (x.size() ? q_.cwiseAbs().maxCoeff() : scalar(0));
+            if (change <= scalar(options_.tolerance) * scale) break;
+        }
+        return change;
+    }
+
     predictor_corrector_options options_;
-    vector f_n_, g_n_, f_, g_, q_, p_, q_corrected_, p_corrected_, q_previous_, p_previous_;
+    typename State::vector f_n_, g_n_, f_, g_, q_, p_, q_corrected_, p_corrected_, q_previous_, p_previous_;
     int iterations_ = 0;
     detail::step_history<State> history_;
 };
-template <class System, class State>
-using predictor_corrector = classic_stepper<System, State, predictor_corrector_rule>;
 
-// A classic stepper for a system or a separable Hamiltonian:
-//   auto s = make_classic<rk4, phase_space<double, 1>>(hamiltonians::pendulum{});
-template <template <class, class> class Method, class State, class System, class... Options>
-auto make_classic(System system, Options&&... options) {
-    auto equations = equations_of<State>(std::move(system));
-    return Method<decltype(equations), State>(std::move(equations), std::forward<Options>(options)...);
-}
+// The steppers: one classic_stepper per rule.
+template <class System, class State> using euler = classic_stepper<System, State, euler_rule>;
+template <class System, class State> using euler_cromer = classic_stepper<System, State, euler_cromer_rule>;
+template <class System, class State> using euler_richardson = classic_stepper<System, State, euler_richardson_rule>;
+template <class System, class State> using rk2 = euler_richardson<System, State>;
+template <class System, class State> using rk4 = classic_stepper<System, State, rk4_rule>;
+template <class System, class State> using velocity_verlet = classic_stepper<System, State, velocity_verlet_rule>;
+template <class System, class State> using half_step = classic_stepper<System, State, half_step_rule>;
+template <class System, class State> using leapfrog_two_step = classic_stepper<System, State, leapfrog_two_step_rule>;
+template <class System, class State> using damped_leapfrog = classic_stepper<System, State, damped_leapfrog_rule>;
+template <class System, class State> using predictor_corrector = classic_stepper<System, State, predictor_corrector_rule>;
 
 }  // namespace sympl

@@ -1,24 +1,13 @@
 #pragma once
 // Extrapolation of a symmetric one-step method to zero step size (Gragg 1965;
-// Bulirsch & Stoer 1966; Hairer, Norsett & Wanner, Solving ODEs I, ch. II.9).
-//
-// One macro step of size H runs the inner method k times from the same state,
-// with n_j = j sub-steps of H/n_j (j = 1..k), and combines the k results
-// linearly so that the polynomial in h^2 through them is read at h = 0. The
-// global error of a symmetric method expands in even powers of h (it is the
-// exact flow of a modified equation whose corrections are even in h), so each
-// column removes the next error term: order p + 2(k - 1) for an inner method of
-// order p (weights built for that p; the plain polynomial in h^2 would gain
-// nothing on a fourth-order method until its third column), at k(k+1)/2 inner
-// steps per macro step. A symmetric one-step method needs no
-// even sequence or smoothing step (those are for Gragg's explicit midpoint
-// rule), so the cheapest sequence 1, 2, 3, ... is used.
-//
-// This is how Mikkola & Tanikawa 1999 (MNRAS 310, 745) and Preto & Tremaine
-// 1999 (AJ 118, 2532) reach high accuracy with the LogH leapfrog
-// (time_transformation.hpp): there the leapfrog follows a Kepler orbit's
-// shape exactly and extrapolation removes its error along the track. The
-// combination is no longer symplectic; its error is that of the extrapolation.
+// Bulirsch & Stoer 1966; Hairer, Norsett & Wanner, Solving ODEs I, ch. II.9):
+// one macro step of size H runs the inner method with n_j = j sub-steps of
+// H/n_j (j = 1..k) and reads the polynomial in h^2 through the k results at
+// h = 0; each column removes the next even power of the error, order
+// p + 2(k - 1) at k(k+1)/2 inner steps. With the LogH leapfrog
+// (time_transformation.hpp) this is the scheme of Mikkola & Tanikawa 1999
+// (MNRAS 310, 745) and Preto & Tremaine 1999 (AJ 118, 2532). Not symplectic.
+// Why the sequence 1, 2, 3, ... and the weights: docs/eccentric-orbits.md.
 //
 //   sympl::splitting_stepper<sympl::logh<Kepler>, X> leapfrog({kepler}, sympl::method("leapfrog_dkd"));
 //   sympl::extrapolation_stepper s(leapfrog, 6);   // order 12, 21 leapfrog steps per macro step

@@ -1,48 +1,21 @@
 #pragma once
 // The implicit Gauss-Legendre collocation Runge-Kutta methods with s = 1, 2, 3
-// stages (orders 2s = 2, 4, 6; s = 1 is the implicit midpoint rule): symplectic
-// for ANY Hamiltonian H(q, p), separable or not (Butcher 1964; Hairer, Lubich &
-// Wanner, Geometric Numerical Integration, 2nd ed. 2006, sec. II.1.3 and
-// Table II.1.1; symplectic by Thm. VI.4.3, since b_i a_ij + b_j a_ji = b_i b_j),
-// and symmetric, so dt < 0 runs backwards.
-//
-// For y = (q, p) and f(y) = (dH/dp, -dH/dq), one step solves the stage equations
-//     Z_i = dt sum_j a_ij f(y0 + Z_j),   i = 1..s
-// by simplified Newton iterations with the Jacobian J of f at y0 (GNI sec. VIII.6.2;
-// Hairer & Wanner, Solving ODEs II, sec. IV.8):
-//     (I - dt A (x) J) dZ = -Z + dt (A (x) I) F(Z),   Z += dZ,
-// J = [[H_pq, H_pp], [-H_qq, -H_qp]] from forward-mode dual numbers through
-// dH/dq and dH/dp (exact for analytic gradients templated on their scalar).
-// The iteration stops when the largest correction |dZ| is at most
-// tolerance * (largest |y0|, |y0 + Z|): the next correction, a factor
-// ~ dt^2 |J'| |Z| smaller, is then below rounding. Where cancellation inside
-// dH/dq or dH/dp puts the rounding floor of the residual above the tolerance,
-// the corrections stop shrinking there; that is accepted as converged when it
-// happens within rounding_allowance (16) tolerances (the rule of GNI sec.
-// VIII.6.2: stop when the corrections no longer decrease). The step is
-//     y1 = y0 + sum_i d_i Z_i,   d^T = b^T A^-1                 (GNI sec. VIII.6)
-// which needs no evaluation of f at the converged stages.
-//
-// On a state of dual numbers the iteration runs on the dual numbers as they
-// are (only the Newton matrix is built from the values), and convergence is
-// judged on values and derivatives alike: the derivative of the step map comes
-// out converged too (what a symplecticity check needs).
-//
-// Cost per step: one Jacobian (2n directions of dual numbers through dH/dq and
-// dH/dp), one LU factorisation of size 2ns, and per iteration s evaluations of
-// dH/dq and of dH/dp and one solve; 3 to 7 iterations to rounding level for
-// dt well inside the range where the method is accurate. force_evaluations()
-// counts the evaluations of dH/dq, velocity_evaluations() those of dH/dp, as
-// the splitting stepper counts -dV/dq and dT/dp.
-//
-// A separable Hamiltonian T(p) + V(q) (hamiltonian.hpp) is accepted too:
-// dH/dq = -force(q), dH/dp = velocity(p).
+// stages (orders 2s = 2, 4, 6; s = 1 is the implicit midpoint rule):
+// symplectic for any H(q, p), separable or not, and symmetric (Butcher 1964;
+// Hairer, Lubich & Wanner, Geometric Numerical Integration, 2nd ed. 2006,
+// sec. II.1.3, Table II.1.1, Thm. VI.4.3). One step solves the stage equations
+//     Z_i = dt sum_j a_ij f(y0 + Z_j),   f(y) = (dH/dp, -dH/dq),
+// by simplified Newton iterations with the Jacobian of f at y0 from dual
+// numbers (GNI sec. VIII.6.2; Hairer & Wanner, Solving ODEs II, sec. IV.8),
+// and takes y1 = y0 + sum_i d_i Z_i, d^T = b^T A^-1 (GNI sec. VIII.6).
+// Convergence test, dual-number states and cost: docs/nonseparable.md.
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <concepts>
 #include <cstdint>
 #include <limits>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <type_traits>
@@ -72,8 +45,7 @@ struct gauss_tableau {
 };
 
 inline gauss_tableau gauss_legendre_tableau(int stages) {
-    const long double r3 = 1.7320508075688772935274463415058723669428L;  // sqrt(3)
-    const long double r15 = 3.8729833462074168851792653997823996108329L; // sqrt(15)
+    const long double r3 = std::numbers::sqrt3_v<long double>, r15 = std::sqrt(15.0L);
     gauss_tableau t;
     t.stages = stages;
     t.order = 2 * stages;
@@ -156,6 +128,54 @@ auto magnitude(const X& x) {
 }
 template <class X>
 using real_of = decltype(primal(std::declval<X>()));
+
+// The LU factorisation with partial pivoting of the Newton matrix
+// I - dt (A (x) J) (Hairer & Wanner, Solving ODEs II, sec. IV.8), in place,
+// and the solve with its factors on stage vectors of any scalar.
+template <class Real>
+struct newton_lu {
+    Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic> matrix;
+    Eigen::Matrix<Eigen::Index, Eigen::Dynamic, 1> pivot;
+
+    void resize(Eigen::Index n) {
+        matrix.resize(n, n);
+        pivot.resize(n);
+    }
+    // Factors `matrix`; returns the index of a zero or non-finite pivot, or -1.
+    Eigen::Index factor() {
+        const Eigen::Index N = matrix.rows();
+        using std::fabs;
+        for (Eigen::Index k = 0; k < N; ++k) {
+            Eigen::Index best = k;
+            for (Eigen::Index r = k + 1; r < N; ++r)
+                if (fabs(matrix(r, k)) > fabs(matrix(best, k))) best = r;
+            pivot[k] = best;
+            if (best != k) matrix.row(k).swap(matrix.row(best));
+            const Real piv = matrix(k, k);
+            if (!(fabs(piv) > Real(0)) || !std::isfinite(double(piv))) return k;
+            for (Eigen::Index r = k + 1; r < N; ++r) {
+                const Real l = matrix(r, k) / piv;
+                matrix(r, k) = l;
+                if (l != Real(0)) matrix.row(r).tail(N - k - 1) -= l * matrix.row(k).tail(N - k - 1);
+            }
+        }
+        return -1;
+    }
+    // v <- matrix^-1 v, with the factors of factor().
+    template <class Vec>
+    void solve(Vec& v) const {
+        const Eigen::Index N = v.size();
+        for (Eigen::Index k = 0; k < N; ++k) {
+            if (pivot[k] != k) std::swap(v[k], v[pivot[k]]);
+            for (Eigen::Index r = k + 1; r < N; ++r)
+                if (matrix(r, k) != Real(0)) v[r] -= matrix(r, k) * v[k];
+        }
+        for (Eigen::Index k = N - 1; k >= 0; --k) {
+            for (Eigen::Index c = k + 1; c < N; ++c) v[k] -= matrix(k, c) * v[c];
+            v[k] = v[k] / matrix(k, k);
+        }
+    }
+};
 }  // namespace detail
 
 template <class H, class State>
@@ -226,8 +246,7 @@ private:
     void size_workspace(Eigen::Index n) {
         n_ = n;
         const Eigen::Index N = 2 * n * tableau_.stages;
-        newton_.resize(N, N);
-        pivot_.resize(N);
+        newton_.resize(N);
         jacobian_.resize(2 * n, 2 * n);
         f0_.resize(2 * n);
         z_.resize(N);
@@ -287,16 +306,9 @@ private:
                 r = -z_.segment(i * m, m);
                 for (int j = 0; j < s; ++j) r += (dt * scalar(a_[i][j])) * f_.segment(j * m, m);
             }
-            solve_newton();
+            newton_.solve(dz_);
             z_ += dz_;
-            real correction = 0, scale = scale0;
-            for (Eigen::Index k = 0; k < s * m; ++k)
-                correction = detail::nan_max(correction, real(detail::magnitude(dz_[k])));
-            for (int i = 0; i < s; ++i)
-                for (Eigen::Index k = 0; k < n; ++k)
-                    scale = detail::nan_max(detail::nan_max(scale, real(detail::magnitude(x.q[k] + z_[i * m + k]))),
-                                            real(detail::magnitude(x.p[k] + z_[i * m + n + k])));
-            residual = scale > 0 ? correction / scale : (correction == 0 ? real(0) : correction);
+            residual = relative_correction(x, scale0);
             if (!isfinite(residual)) break;
             // At the tolerance; or at the rounding floor of the residual, which
             // cancellation inside dH/dq or dH/dp can put above a few ulps: the
@@ -326,6 +338,21 @@ private:
             x.q += scalar(d_[i]) * z_.segment(i * m, n);
             x.p += scalar(d_[i]) * z_.segment(i * m + n, n);
         }
+    }
+
+    // The largest |dZ| relative to the largest of scale0 = max |y0| and |y0 + Z_i|,
+    // a NaN kept (a diverged iteration is never taken for a converged one).
+    real relative_correction(const State& x, real scale0) const {
+        const int s = tableau_.stages;
+        const Eigen::Index n = n_, m = 2 * n;
+        real correction = 0, scale = scale0;
+        for (Eigen::Index k = 0; k < s * m; ++k)
+            correction = detail::nan_max(correction, real(detail::magnitude(dz_[k])));
+        for (int i = 0; i < s; ++i)
+            for (Eigen::Index k = 0; k < n; ++k)
+                scale = detail::nan_max(detail::nan_max(scale, real(detail::magnitude(x.q[k] + z_[i * m + k]))),
+                                        real(detail::magnitude(x.p[k] + z_[i * m + n + k])));
+        return scale > 0 ? correction / scale : (correction == 0 ? real(0) : correction);
     }
 
     // f(y0) and its Jacobian J = d f / d y at the values of x, by dual numbers
@@ -361,48 +388,21 @@ private:
         ++jacobian_evaluations_;
     }
 
-    // LU with partial pivoting of I - dt (A (x) J), in place.
+    // I - dt (A (x) J), factored.
     void factor_newton_matrix(real h, const scalar& dt, double t) {
         const int s = tableau_.stages;
-        const Eigen::Index m = 2 * n_, N = s * m;
+        const Eigen::Index m = 2 * n_;
         for (int i = 0; i < s; ++i)
             for (int j = 0; j < s; ++j)
-                newton_.block(i * m, j * m, m, m) = (-h * a_[i][j]) * jacobian_;
-        newton_.diagonal().array() += real(1);
-        using std::fabs;
-        for (Eigen::Index k = 0; k < N; ++k) {
-            Eigen::Index best = k;
-            for (Eigen::Index r = k + 1; r < N; ++r)
-                if (fabs(newton_(r, k)) > fabs(newton_(best, k))) best = r;
-            pivot_[k] = best;
-            if (best != k) newton_.row(k).swap(newton_.row(best));
-            const real piv = newton_(k, k);
-            if (!(fabs(piv) > real(0)) || !std::isfinite(double(piv)))
-                throw integration_error("gauss_collocation_stepper: the Newton matrix I - dt A (x) J is singular or "
-                                        "not finite at dt = " + detail::number(dt) +
-                                        " (pivot " + detail::number_text(piv) +
-                                        "); expected a finite Jacobian of the vector field at the step's start",
-                                        0, t);
-            for (Eigen::Index r = k + 1; r < N; ++r) {
-                const real l = newton_(r, k) / piv;
-                newton_(r, k) = l;
-                if (l != real(0)) newton_.row(r).tail(N - k - 1) -= l * newton_.row(k).tail(N - k - 1);
-            }
-        }
-    }
-
-    // dz_ <- (newton matrix)^-1 dz_, with the factors of factor_newton_matrix.
-    void solve_newton() {
-        const Eigen::Index N = dz_.size();
-        for (Eigen::Index k = 0; k < N; ++k) {
-            if (pivot_[k] != k) std::swap(dz_[k], dz_[pivot_[k]]);
-            for (Eigen::Index r = k + 1; r < N; ++r)
-                if (newton_(r, k) != real(0)) dz_[r] -= newton_(r, k) * dz_[k];
-        }
-        for (Eigen::Index k = N - 1; k >= 0; --k) {
-            for (Eigen::Index c = k + 1; c < N; ++c) dz_[k] -= newton_(k, c) * dz_[c];
-            dz_[k] = dz_[k] / newton_(k, k);
-        }
+                newton_.matrix.block(i * m, j * m, m, m) = (-h * a_[i][j]) * jacobian_;
+        newton_.matrix.diagonal().array() += real(1);
+        const Eigen::Index bad = newton_.factor();
+        if (bad >= 0)
+            throw integration_error("gauss_collocation_stepper: the Newton matrix I - dt A (x) J is singular or "
+                                    "not finite at dt = " + detail::number(dt) +
+                                    " (pivot " + detail::number_text(newton_.matrix(bad, bad)) +
+                                    "); expected a finite Jacobian of the vector field at the step's start",
+                                    0, t);
     }
 
     system_type h_;
@@ -412,8 +412,8 @@ private:
     std::array<real, 3> c_{}, d_{};
     std::array<std::array<real, 3>, 3> a_{};
     Eigen::Index n_ = -1;
-    real_matrix newton_, jacobian_;
-    Eigen::Matrix<Eigen::Index, Eigen::Dynamic, 1> pivot_;
+    detail::newton_lu<real> newton_;
+    real_matrix jacobian_;
     Eigen::Matrix<real, Eigen::Dynamic, 1> f0_;
     stage_vector z_, dz_, f_;
     vector yq_, yp_, gq_, gp_;

@@ -1,26 +1,14 @@
 #pragma once
 // Time-transformed stepping in the extended phase space: the logarithmic
 // Hamiltonian (LogH) of Mikkola & Tanikawa 1999 (MNRAS 310, 745) and Preto &
-// Tremaine 1999 (AJ 118, 2532).
-//
-// Time t becomes a coordinate with conjugate momentum p_t; on the orbit
-// p_t = -H0, the (conserved) energy. In a fictitious time s the Hamiltonian
+// Tremaine 1999 (AJ 118, 2532). Time t becomes a coordinate with momentum
+// p_t = -H0 on the orbit, and in a fictitious time s the separable
 //     Lambda(Q, P) = ln(T(p) + p_t) - ln(-V(q)),   Q = (q, t), P = (p, p_t),
-// generates the same orbit (Lambda = 0 on it) and is separable again, with
-//     drift:  dq/ds = dT/dp / (T + p_t),   dt/ds = 1 / (T + p_t),
-//     kick:   dp/ds = -dV/dq / (-V),       dp_t/ds = 0   (V does not depend on t).
-// Any kick-drift table runs on it unchanged, as logh<H> in a splitting_stepper,
-// and keeps its order. On the orbit T + p_t = -V, so the physical step is
-// dt = ds / (-V): short where |V| is large (the pericentre of an eccentric
-// orbit), long where it is small. For Kepler, logh(leapfrog) moves along the
-// exact orbit (its energy error is rounding only) with an error along the
-// track (Mikkola & Tanikawa 1999; Preto & Tremaine 1999). Measured, that
-// exactness belongs to the drift-first leapfrog (leapfrog_dkd: energy error at
-// rounding level at e = 0.99); leapfrog_kdk has an ordinary second-order
-// energy error (tests/methods/test_time_transformation.cpp).
-//
-// It needs V(q) < 0 along the orbit (gravitating bodies) and T + p_t > 0;
-// a state where either fails is an invalid_argument naming the value.
+// generates the same orbit, so any kick-drift table runs on it unchanged as
+// logh<H> in a splitting_stepper and keeps its order; the physical step is
+// dt = ds / (-V), short at the pericentre. It needs V(q) < 0 along the orbit
+// and T + p_t > 0; a state where either fails is an invalid_argument naming
+// the value. The flows and what is measured of them: docs/eccentric-orbits.md.
 //
 //   auto X = sympl::to_extended(kepler, x0);               // (q, 0), (p, -H(x0))
 //   sympl::splitting_stepper<sympl::logh<Kepler>, decltype(X)> s({kepler}, method("blanes_moan_s6"));

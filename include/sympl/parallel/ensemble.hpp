@@ -146,160 +146,194 @@ State lane_state_of(const X& x, int lane) {
 // Trajectories start[0 .. count) (count <= L) advanced together in the lanes
 // of one state; unused lanes carry a copy of lane 0 and are dropped.
 template <int L, bool Tangent, class H, class State, class Reduction>
-void run_lanes(const H& h, const table& m, const State* start, int count, const ensemble_options& o,
-               const Reduction& prototype, trajectory_result<State>* out) {
+class lane_run {
     using S = lane_scalar<L>;
     using X = std::conditional_t<Tangent, phase_space<dual<S, 1>, State::dimension>, phase_space<S, State::dimension>>;
     using Scalar = typename X::scalar;
-    const Eigen::Index n = start[0].size();
-
-    X x(n);
-    const auto load_lane = [&](int lane, const State& s) {
-        for (Eigen::Index i = 0; i < n; ++i) {
-            set_lane(value_part(x.q[i]), lane, s.q[i]);
-            set_lane(value_part(x.p[i]), lane, s.p[i]);
-        }
-    };
-    const auto lane_state = [&](int lane) { return lane_state_of<State>(x, lane); };
-    for (int lane = 0; lane < L; ++lane) load_lane(lane, start[lane < count ? lane : 0]);
-    // The tangent vector starts as the unit vector (1, ..., 1)/sqrt(2n).
-    if constexpr (Tangent) {
-        const double unit = 1 / std::sqrt(2.0 * double(n));
-        for (Eigen::Index i = 0; i < n; ++i) x.q[i].grad[0] = x.p[i].grad[0] = S(unit);
-    }
-    // The plain state, for the energy (every lane at once).
     using PlainVector = Eigen::Matrix<S, State::dimension, 1>;
-    PlainVector qv(n), pv(n);
-    const auto energy_now = [&] {
-        for (Eigen::Index i = 0; i < n; ++i) {
-            qv[i] = value_part(x.q[i]);
-            pv[i] = value_part(x.p[i]);
-        }
-        return S(h.kinetic(pv)) + S(h.potential(qv));
-    };
 
-    std::array<bool, L> alive{};
-    std::array<double, L> e0{}, scale{};
-    std::array<megno_accumulator<double>, L> megno{};
-    std::array<double, L> log_offset{};  // ln of the factors the tangent vector was divided by
-    std::vector<Reduction> reductions(std::size_t(count), prototype);
-    const bool watch_energy = o.energy || o.divergence < std::numeric_limits<double>::infinity();
-    const S energy0 = watch_energy ? energy_now() : S(0);
-    for (int lane = 0; lane < count; ++lane) {
-        alive[lane] = true;
-        e0[lane] = lane_of(energy0, lane);
-        scale[lane] = e0[lane] != 0 ? std::fabs(e0[lane]) : 1;
-        out[lane].max_energy_error = o.energy ? 0 : -1;
-        reductions[std::size_t(lane)](start[lane], o.t0);
+public:
+    lane_run(const H& h, const table& m, const State* start, int count, const ensemble_options& o,
+             const Reduction& prototype, trajectory_result<State>* out)
+        : h_(h), m_(m), count_(count), o_(o), out_(out), n_(start[0].size()), x_(n_), qv_(n_), pv_(n_),
+          reductions_(std::size_t(count), prototype), stepper_(h, m) {
+        for (int lane = 0; lane < L; ++lane) load_lane(lane, start[lane < count ? lane : 0]);
+        // The tangent vector starts as the unit vector (1, ..., 1)/sqrt(2n).
+        if constexpr (Tangent) {
+            const double unit = 1 / std::sqrt(2.0 * double(n_));
+            for (Eigen::Index i = 0; i < n_; ++i) x_.q[i].grad[0] = x_.p[i].grad[0] = S(unit);
+        }
+        const S energy0 = watch_energy_ ? energy_now() : S(0);
+        for (int lane = 0; lane < count; ++lane) {
+            alive_[lane] = true;
+            e0_[lane] = lane_of(energy0, lane);
+            scale_[lane] = e0_[lane] != 0 ? std::fabs(e0_[lane]) : 1;
+            out_[lane].max_energy_error = o.energy ? 0 : -1;
+            reductions_[std::size_t(lane)](start[lane], o.t0);
+        }
     }
 
-    splitting_stepper<H, X> stepper(h, m);
-    X chunk_start = x;
-    bool resume = false;
-    std::size_t done = 0;
-    int living = count;
-    while (done < o.steps && living > 0) {
-        const std::size_t k = std::min(o.sample_every, o.steps - done);
-        chunk_start = x;
-        if (resume) stepper.resume_steps(x, Scalar(o.dt), k);
-        else stepper.steps(x, Scalar(o.dt), k);
-        resume = true;
-        done += k;
-        const double t = o.t0 + double(done) * o.dt;
+    // Chunks of sample_every steps; after each, every living lane is checked
+    // and sampled, lost lanes refilled and the tangent vectors rescaled.
+    void run() {
+        X chunk_start = x_;
+        std::size_t done = 0;
+        int living = count_;
+        while (done < o_.steps && living > 0) {
+            const std::size_t k = std::min(o_.sample_every, o_.steps - done);
+            chunk_start = x_;
+            if (resume_) stepper_.resume_steps(x_, Scalar(o_.dt), k);
+            else stepper_.steps(x_, Scalar(o_.dt), k);
+            resume_ = true;
+            done += k;
+            S norm2(0);
+            if constexpr (Tangent)
+                for (Eigen::Index i = 0; i < n_; ++i)
+                    norm2 += x_.q[i].grad[0] * x_.q[i].grad[0] + x_.p[i].grad[0] * x_.p[i].grad[0];
+            if (sample(chunk_start, done, k, norm2)) living = refill_lost();
+            if (living == 0) break;
+            if constexpr (Tangent) rescale_tangent(norm2);
+        }
+        for (int lane = 0; lane < count_; ++lane) {
+            if (alive_[lane]) out_[lane].final_state = lane_state(lane);
+            if constexpr (!std::is_same_v<Reduction, no_reduction>)
+                out_[lane].quantity = reductions_[std::size_t(lane)].value();
+        }
+    }
 
+private:
+    void load_lane(int lane, const State& s) {
+        for (Eigen::Index i = 0; i < n_; ++i) {
+            set_lane(value_part(x_.q[i]), lane, s.q[i]);
+            set_lane(value_part(x_.p[i]), lane, s.p[i]);
+        }
+    }
+    State lane_state(int lane) const { return lane_state_of<State>(x_, lane); }
+
+    // The energy of every lane at once, from the plain state.
+    S energy_now() {
+        for (Eigen::Index i = 0; i < n_; ++i) {
+            qv_[i] = value_part(x_.q[i]);
+            pv_[i] = value_part(x_.p[i]);
+        }
+        return S(h_.kinetic(pv_)) + S(h_.potential(qv_));
+    }
+
+    // Checks and samples every living lane after a chunk of k steps ending at
+    // step `done`; returns whether a lane was lost (non-finite or diverged).
+    bool sample(const X& chunk_start, std::size_t done, std::size_t k, const S& norm2) {
+        const double t = o_.t0 + double(done) * o_.dt;
         // A lane is finite when 0*x is 0 in every component (NaN otherwise).
         S probe(0);
-        for (Eigen::Index i = 0; i < n; ++i) {
-            probe += value_part(x.q[i]) * 0.0 + value_part(x.p[i]) * 0.0;
-            if constexpr (Tangent) probe += x.q[i].grad[0] * 0.0 + x.p[i].grad[0] * 0.0;
+        for (Eigen::Index i = 0; i < n_; ++i) {
+            probe += value_part(x_.q[i]) * 0.0 + value_part(x_.p[i]) * 0.0;
+            if constexpr (Tangent) probe += x_.q[i].grad[0] * 0.0 + x_.p[i].grad[0] * 0.0;
         }
-        S e = watch_energy ? energy_now() : S(0);
-        S norm2(0);
-        if constexpr (Tangent)
-            for (Eigen::Index i = 0; i < n; ++i) norm2 += x.q[i].grad[0] * x.q[i].grad[0] + x.p[i].grad[0] * x.p[i].grad[0];
-
+        S e = watch_energy_ ? energy_now() : S(0);
         bool lost = false;
-        for (int lane = 0; lane < count; ++lane) {
-            if (!alive[lane]) continue;
-            trajectory_result<State>& r = out[lane];
+        for (int lane = 0; lane < count_; ++lane) {
+            if (!alive_[lane]) continue;
+            trajectory_result<State>& r = out_[lane];
             if (lane_of(probe, lane) != 0) {
                 State last = lane_state_of<State>(chunk_start, lane);
-                const std::size_t bad = replay_to_blow_up(h, m, last, done - k, k, o.dt);
+                const std::size_t bad = replay_to_blow_up(h_, m_, last, done - k, k, o_.dt);
                 r.stable = false;
                 r.blowup_step = bad;
-                r.blowup_time = o.t0 + double(bad - 1) * o.dt;
-                r.failure = blow_up(bad, r.blowup_time, o.dt).what();
+                r.blowup_time = o_.t0 + double(bad - 1) * o_.dt;
+                r.failure = blow_up(bad, r.blowup_time, o_.dt).what();
                 r.final_state = last;
-                alive[lane] = false;
+                alive_[lane] = false;
                 lost = true;
                 continue;
             }
-            if (watch_energy) {
-                const double err = std::fabs(lane_of(e, lane) - e0[lane]) / scale[lane];
-                if (o.energy) r.max_energy_error = std::max(r.max_energy_error, err);
-                if (err > o.divergence) {
+            if (watch_energy_) {
+                const double err = std::fabs(lane_of(e, lane) - e0_[lane]) / scale_[lane];
+                if (o_.energy) r.max_energy_error = std::max(r.max_energy_error, err);
+                if (err > o_.divergence) {
                     r.stable = false;
                     r.blowup_step = done;
-                    r.blowup_time = t - o.dt;
+                    r.blowup_time = t - o_.dt;
                     r.failure = "the relative energy error reached " + number_text(err) + " > " +
-                                number_text(o.divergence) + " at step " + std::to_string(done) + " (t = " +
+                                number_text(o_.divergence) + " at step " + std::to_string(done) + " (t = " +
                                 number_text(t) + ")";
                     r.final_state = lane_state(lane);
-                    alive[lane] = false;
+                    alive_[lane] = false;
                     lost = true;
                     continue;
                 }
             }
             if constexpr (Tangent) {
                 const double n2 = lane_of(norm2, lane);
-                megno[lane].add(t - o.t0, 0.5 * std::log(n2) + log_offset[lane]);
-                r.megno = megno[lane].mean();
+                megno_[lane].add(t - o_.t0, 0.5 * std::log(n2) + log_offset_[lane]);
+                r.megno = megno_[lane].mean();
             }
-            if constexpr (!std::is_same_v<Reduction, no_reduction>) reductions[std::size_t(lane)](lane_state(lane), t);
+            if constexpr (!std::is_same_v<Reduction, no_reduction>) reductions_[std::size_t(lane)](lane_state(lane), t);
         }
-        if (lost) {
-            // A lost lane carries a copy of a living one from now on (its
-            // numbers are dropped); the stepper's carried force is then stale.
-            living = 0;
-            int donor = -1;
-            for (int lane = 0; lane < count; ++lane)
-                if (alive[lane]) {
-                    ++living;
-                    if (donor < 0) donor = lane;
-                }
-            if (living == 0) break;
-            const State d = lane_state(donor);
-            for (int lane = 0; lane < L; ++lane)
-                if (lane >= count || !alive[lane]) {
-                    load_lane(lane, d);
-                    if constexpr (Tangent)
-                        for (Eigen::Index i = 0; i < n; ++i) {
-                            set_lane(x.q[i].grad[0], lane, lane_of(x.q[i].grad[0], donor));
-                            set_lane(x.p[i].grad[0], lane, lane_of(x.p[i].grad[0], donor));
-                        }
-                }
-            resume = false;
-        }
-        if constexpr (Tangent) {
-            // |delta| grows like exp(lambda t) on chaotic orbits: divided by
-            // 2^400 (exactly) before it overflows, the factor kept in log_offset.
-            bool rescaled = false;
-            for (int lane = 0; lane < L; ++lane)
-                if (lane_of(norm2, lane) > 1e200) {
-                    for (Eigen::Index i = 0; i < n; ++i) {
-                        set_lane(x.q[i].grad[0], lane, std::ldexp(lane_of(x.q[i].grad[0], lane), -400));
-                        set_lane(x.p[i].grad[0], lane, std::ldexp(lane_of(x.p[i].grad[0], lane), -400));
+        return lost;
+    }
+
+    // A lost lane carries a copy of a living one from now on (its numbers are
+    // dropped); the stepper's carried force is then stale. Returns the living count.
+    int refill_lost() {
+        int living = 0, donor = -1;
+        for (int lane = 0; lane < count_; ++lane)
+            if (alive_[lane]) {
+                ++living;
+                if (donor < 0) donor = lane;
+            }
+        if (living == 0) return 0;
+        const State d = lane_state(donor);
+        for (int lane = 0; lane < L; ++lane)
+            if (lane >= count_ || !alive_[lane]) {
+                load_lane(lane, d);
+                if constexpr (Tangent)
+                    for (Eigen::Index i = 0; i < n_; ++i) {
+                        set_lane(x_.q[i].grad[0], lane, lane_of(x_.q[i].grad[0], donor));
+                        set_lane(x_.p[i].grad[0], lane, lane_of(x_.p[i].grad[0], donor));
                     }
-                    if (lane < count) log_offset[lane] += 400 * std::log(2.0);
-                    rescaled = true;
+            }
+        resume_ = false;
+        return living;
+    }
+
+    // |delta| grows like exp(lambda t) on chaotic orbits: divided by 2^400
+    // (exactly) before it overflows, the factor kept in log_offset_.
+    void rescale_tangent(const S& norm2) {
+        bool rescaled = false;
+        for (int lane = 0; lane < L; ++lane)
+            if (lane_of(norm2, lane) > 1e200) {
+                for (Eigen::Index i = 0; i < n_; ++i) {
+                    set_lane(x_.q[i].grad[0], lane, std::ldexp(lane_of(x_.q[i].grad[0], lane), -400));
+                    set_lane(x_.p[i].grad[0], lane, std::ldexp(lane_of(x_.p[i].grad[0], lane), -400));
                 }
-            if (rescaled) resume = false;  // the carried force's tangent part is stale
-        }
+                if (lane < count_) log_offset_[lane] += 400 * std::log(2.0);
+                rescaled = true;
+            }
+        if (rescaled) resume_ = false;  // the carried force's tangent part is stale
     }
-    for (int lane = 0; lane < count; ++lane) {
-        if (alive[lane]) out[lane].final_state = lane_state(lane);
-        if constexpr (!std::is_same_v<Reduction, no_reduction>) out[lane].quantity = reductions[std::size_t(lane)].value();
-    }
+
+    const H& h_;
+    const table& m_;
+    int count_;
+    const ensemble_options& o_;
+    trajectory_result<State>* out_;
+    Eigen::Index n_;
+    X x_;
+    PlainVector qv_, pv_;
+    std::array<bool, L> alive_{};
+    std::array<double, L> e0_{}, scale_{};
+    std::array<megno_accumulator<double>, L> megno_{};
+    std::array<double, L> log_offset_{};  // ln of the factors the tangent vector was divided by
+    std::vector<Reduction> reductions_;
+    bool watch_energy_ = o_.energy || o_.divergence < std::numeric_limits<double>::infinity();
+    splitting_stepper<H, X> stepper_;
+    bool resume_ = false;
+};
+
+template <int L, bool Tangent, class H, class State, class Reduction>
+void run_lanes(const H& h, const table& m, const State* start, int count, const ensemble_options& o,
+               const Reduction& prototype, trajectory_result<State>* out) {
+    lane_run<L, Tangent, H, State, Reduction>(h, m, start, count, o, prototype, out).run();
 }
 
 }  // namespace detail
