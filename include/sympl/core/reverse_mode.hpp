@@ -15,6 +15,7 @@
 // `auto`, and give both branches of `c ? x : y` that type.
 #include <cmath>
 #include <concepts>
+#include <cstddef>
 #include <cstdint>
 #include <type_traits>
 
@@ -34,6 +35,7 @@ template <class T>
 struct taped {
     static_assert(std::is_floating_point_v<T>, "sympl::taped records plain floating-point arithmetic");
     using reverse_value = T;
+    static constexpr std::size_t leaves = 1;  // taped numbers an expression of it refers to, at most
     T value{};
     std::int32_t node = 0;
 
@@ -48,6 +50,7 @@ struct taped {
     taped(const E& e) : value(e.value) {
         auto* tape = detail::reverse_tape<T>::active();
         if (tape == nullptr) return;
+        tape->reserve(E::leaves);
         e.emit(*tape, T(1));
         node = tape->close_statement();
     }
@@ -76,24 +79,28 @@ struct taped {
 template <class A, class B>
 struct reverse_sum {
     using reverse_value = typename A::reverse_value;
+    static constexpr std::size_t leaves = A::leaves + B::leaves;
     A a; B b; reverse_value value;
     template <class Tape> void emit(Tape& t, reverse_value m) const { a.emit(t, m); b.emit(t, m); }
 };
 template <class A, class B>
 struct reverse_difference {
     using reverse_value = typename A::reverse_value;
+    static constexpr std::size_t leaves = A::leaves + B::leaves;
     A a; B b; reverse_value value;
     template <class Tape> void emit(Tape& t, reverse_value m) const { a.emit(t, m); b.emit(t, -m); }
 };
 template <class A, class B>
 struct reverse_product {
     using reverse_value = typename A::reverse_value;
+    static constexpr std::size_t leaves = A::leaves + B::leaves;
     A a; B b; reverse_value value;
     template <class Tape> void emit(Tape& t, reverse_value m) const { a.emit(t, m * b.value); b.emit(t, m * a.value); }
 };
 template <class A, class B>
 struct reverse_quotient {
     using reverse_value = typename A::reverse_value;
+    static constexpr std::size_t leaves = A::leaves + B::leaves;
     A a; B b; reverse_value value, inverse;  // value = a / b, inverse = 1 / b
     template <class Tape> void emit(Tape& t, reverse_value m) const {
         a.emit(t, m * inverse);
@@ -104,12 +111,14 @@ struct reverse_quotient {
 template <class A>
 struct reverse_unary {
     using reverse_value = typename A::reverse_value;
+    static constexpr std::size_t leaves = A::leaves;
     A a; reverse_value value, derivative;
     template <class Tape> void emit(Tape& t, reverse_value m) const { a.emit(t, m * derivative); }
 };
 template <class A, class B>
 struct reverse_binary {
     using reverse_value = typename A::reverse_value;
+    static constexpr std::size_t leaves = A::leaves + B::leaves;
     A a; B b; reverse_value value, da, db;
     template <class Tape> void emit(Tape& t, reverse_value m) const { a.emit(t, m * da); b.emit(t, m * db); }
 };

@@ -53,28 +53,33 @@ public:
         std::fill(first_.begin(), first_.begin() + std::ptrdiff_t(n + 2), 0);
         inputs_ = n;
         statements_ = n + 1;
-        operations_ = 0;
+        operations_ = statement_start_ = 0;
         active() = this;
     }
 
+    // Room for the next statement's operations, at most `count`; emit() then
+    // writes without a check of its own.
+    void reserve(std::size_t count) {
+        if (operations_ + count > ops_.size()) [[unlikely]]
+            grow(operations_ + count);
+    }
     // A node met twice in a row within a statement (r * r) is one operation:
     // one update of its adjoint instead of two that would wait on each other.
     void emit(std::int32_t node, T multiplier) {
-        if (operations_ > std::size_t(first_[statements_]) && ops_[operations_ - 1].node == node) {
+        if (operations_ > statement_start_ && ops_[operations_ - 1].node == node) {
             ops_[operations_ - 1].multiplier += multiplier;
             return;
         }
-        if (operations_ == operations_capacity_) [[unlikely]]
-            grow(operations_, ops_, operations_capacity_);
         ops_[operations_++] = {multiplier, node};
     }
     // Ends the statement whose operations were just emitted; 0 when there were
     // none (a value that depends on no variable is a constant).
     std::int32_t close_statement() {
-        if (operations_ == std::size_t(first_[statements_])) return 0;
+        if (operations_ == statement_start_) return 0;
         if (statements_ + 2 > first_.size()) [[unlikely]]
             grow_statements();
         first_[statements_ + 1] = std::int32_t(operations_);
+        statement_start_ = operations_;
         return std::int32_t(statements_++);
     }
 
@@ -98,12 +103,11 @@ public:
     std::size_t operations() const { return operations_; }
 
 private:
-    static void grow(std::size_t used, std::vector<tape_operation<T>>& v, std::size_t& capacity) {
-        if (used >= std::size_t(INT32_MAX) / 2)
+    void grow(std::size_t needed) {
+        if (needed >= std::size_t(INT32_MAX) / 2)
             throw invalid_argument("reverse mode: one evaluation recorded more than 2^30 operations; expected fewer "
                                    "(give the Hamiltonian an analytic force)");
-        v.resize(std::max<std::size_t>(4096, 2 * v.size()));
-        capacity = v.size();
+        ops_.resize(std::max<std::size_t>({4096, 2 * ops_.size(), needed}));
     }
     void grow_statements() {
         if (first_.size() >= std::size_t(INT32_MAX) / 2)
@@ -114,7 +118,7 @@ private:
     std::vector<std::int32_t> first_;  // statement s's operations are [first_[s], first_[s + 1])
     std::vector<tape_operation<T>> ops_;
     std::vector<T> adjoints_;
-    std::size_t inputs_ = 0, statements_ = 0, operations_ = 0, operations_capacity_ = 0;
+    std::size_t inputs_ = 0, statements_ = 0, operations_ = 0, statement_start_ = 0;
 };
 
 }  // namespace sympl::detail
