@@ -216,10 +216,10 @@ using L2 = phase_space<long double, 2>;
 
 struct controlled_run {
     double error;  // final, against Kepler's exact orbit
-    rkn_summary summary;
+    control_summary summary;
 };
 template <class P>
-controlled_run kepler_controlled(double tol, rkn_control c = {}) {
+controlled_run kepler_controlled(double tol, control_options c = {}) {
     // Three periods of Kepler e = 0.5, in long double: at tol = 1e-12 the
     // 6th-order pair takes 2700 steps, whose rounding in double (~1e-13)
     // would be part of what is measured.
@@ -230,7 +230,7 @@ controlled_run kepler_controlled(double tol, rkn_control c = {}) {
     // A broken error estimate would crawl in tiny steps: stop it as an underflow
     // (dt_min = 1e-6 t_end; no rejected step of the three pairs comes near it here).
     c.dt_min = 1e-6 * double(t_end);
-    const rkn_summary r = integrate_controlled(s, x, 0.0L, t_end, c);
+    const control_summary r = integrate_controlled(s, x, 0.0L, t_end, c);
     return {static_cast<double>(max_difference(x, hamiltonians::kepler::exact_state<long double>(0.5, t_end))), r};
 }
 
@@ -276,14 +276,14 @@ TEST_CASE("rkn pairs: step-size control keeps the global error proportional to t
 
 TEST_CASE("rkn pairs: rejected steps are counted, the step never grows by more than max_factor") {
     // A first trial step of half the span must be rejected, and retried from the same force.
-    rkn_control c;
+    control_options c;
     c.dt_initial = 3 * 3.14159265358979323846;
     c.max_factor = 2;
     std::vector<long double> times;
     auto s = make_rkn_stepper<dprkn8, L2>(hamiltonians::kepler{});
     L2 x = hamiltonians::kepler::initial_state<long double>(0.5);
     c.absolute_tolerance = c.relative_tolerance = 1e-10;
-    const rkn_summary r =
+    const control_summary r =
         integrate_controlled(s, x, 0.0L, 6 * 3.14159265358979323846264338327950288L, c,
                              [&](const L2&, long double t) { times.push_back(t); });
     CHECK(r.rejected >= 1);
@@ -294,7 +294,7 @@ TEST_CASE("rkn pairs: rejected steps are counted, the step never grows by more t
 }
 
 TEST_CASE("rkn pairs: a step-size underflow names the time and step size and keeps the last accepted state") {
-    rkn_control c;
+    control_options c;
     c.absolute_tolerance = c.relative_tolerance = 1e-14;
     c.dt_initial = 0.5;
     c.dt_min = 0.2;  // far too large for 1e-14 at the pericentre of e = 0.5
@@ -405,7 +405,7 @@ TEST_CASE("rkn pairs: bad input is refused with the bad value named") {
     CHECK(message([&] { s.step(x, std::nan("")); }).find("dt = nan") != std::string::npos);
     CHECK(message([&] { s.step(x, HUGE_VAL); }).find("dt = inf") != std::string::npos);
     CHECK(message([&] { s.step(x, 0.0); }).find("dt = 0;") != std::string::npos);
-    rkn_control c;
+    control_options c;
     c.absolute_tolerance = 0;
     CHECK(message([&] { integrate_controlled(s, x, 0.0, 1.0, c); }).find("absolute_tolerance = 0;") != std::string::npos);
     c = {};
@@ -421,7 +421,7 @@ TEST_CASE("rkn pairs: bad input is refused with the bad value named") {
     CHECK(message([&] { integrate_controlled(s, x, 1.0, 1.0); }).find("t_end = 1 with t0 = 1") != std::string::npos);
     CHECK(message([&] { make_rkn_stepper<dprkn8, S>(hamiltonians::kepler{}).accept(x); }).find("no trial step") !=
           std::string::npos);
-    CHECK(message([&] { s.attempt(x, std::nan(""), 1e-8, 1e-8); }).find("attempt: dt = nan") != std::string::npos);
+    CHECK(message([&] { s.attempt(x, 0.0, std::nan(""), control_options{}); }).find("attempt: dt = nan") != std::string::npos);
     S bad = x;
     bad.q[1] = std::nan("");
     CHECK(message([&] { s.step(bad, 0.1); }).find("not finite") != std::string::npos);

@@ -25,7 +25,7 @@
 
 #include "../core/equations_of_motion.hpp"
 #include "../core/error.hpp"
-#include "../core/integrate.hpp"
+#include "../drivers/fixed_step.hpp"
 #include "../core/phase_space.hpp"
 
 namespace sympl {
