@@ -83,7 +83,7 @@ TEST_CASE("controlled: the stepper's own defaults when no options are given") {
     CHECK(r.largest_error <= 1);
 }
 
-TEST_CASE("controlled: bad options name the value; an unreachable tolerance stops with a step size underflow") {
+TEST_CASE("controlled: bad options name the value, and an unreachable tolerance stops with a step size underflow") {
     heun_euler s;
     S1 x(1);
     x.q[0] = 1;

@@ -85,6 +85,87 @@ concept groups_steps = !time_aware_stepper<S> && (requires(S s, typename S::stat
 } || requires(S s, typename S::state_type& x, typename S::scalar dt) { s.resume_steps(x, dt, std::size_t(1)); });
 }  // namespace detail
 
+namespace detail {
+// integrate_dense's run of a stepper that groups steps: observed at the ends
+// of its chunks only, the step ends inside a chunk that holds output times
+// replayed on a copy of the stepper (see integrate_dense).
+template <class Stepper, class Interpolant, class Emit, class Callback>
+void dense_by_chunks(Stepper& stepper, typename Stepper::state_type& x, typename Stepper::scalar t0,
+                     typename Stepper::scalar t_end, typename Stepper::scalar dt,
+                     const until_steps<typename Stepper::scalar>& plan,
+                     std::span<const typename Stepper::scalar> output_times, std::size_t& next, Interpolant& dense,
+                     Emit& emit, Callback& callback, dense_summary& r) {
+    using T = typename Stepper::scalar;
+    using State = typename Stepper::state_type;
+    static_assert(std::copy_constructible<Stepper>,
+                  "integrate_dense replays chunks of a stepper that groups steps on a copy of it: "
+                  "expected a copyable stepper");
+    const std::size_t n = plan.n, last = plan.rest > T(0) ? n + 1 : n;  // index of the last step end
+    const auto time_of = [&](std::size_t i) { return i <= n ? t0 + T(i) * dt : t_end; };
+    run_options chunks;  // integrate_until's defaults, observed once per chunk
+    chunks.observe_every = chunks.check_every;
+    const std::size_t chunk = chunks.check_every;
+    std::optional<Stepper> shadow;
+    State start = x, y = x;
+    std::size_t start_index = 0, dense_end = 0;  // dense_end: the interpolant's end, when it is a run state
+    // m steps of the copy from step index `from`, y its state.
+    const auto replay = [&](std::size_t from, std::size_t m) {
+        if (!shadow) shadow.emplace(stepper);
+        const auto f = detail::forces(*shadow), v = detail::velocities(*shadow);
+        detail::advance(*shadow, y, t0, dt, from, m, false);
+        r.replay_force_evaluations += detail::forces(*shadow) - f;
+        r.replay_velocity_evaluations += detail::velocities(*shadow) - v;
+        r.replayed_steps += m;
+    };
+    bool started = false;
+    auto observer = [&](const State& s, T t) {
+        if (!started) {
+            started = true;
+            dense.start(s, t);
+            while (next < output_times.size() && output_times[next] <= t) emit();
+            start = s;
+            return;
+        }
+        const std::size_t i1 = start_index < n ? std::min(start_index + chunk, n) : n + 1;
+        // The last chunk also takes times beyond its end by a rounding (see above).
+        const auto inside = [&] { return next < output_times.size() && (output_times[next] <= t || i1 == last); };
+        if (inside()) {
+            std::size_t cur = start_index;
+            if (dense_end != cur) dense.start(start, time_of(cur));
+            y = start;
+            while (inside()) {
+                const T tau = output_times[next];
+                if (tau == t && cur < i1) {  // the chunk's end: the run's own state, nothing to replay
+                    callback(std::as_const(s), tau);
+                    ++next;
+                    continue;
+                }
+                std::size_t target = cur;  // the step (target - 1, target] holding tau
+                while (target < i1 && tau > time_of(target)) ++target;
+                if (target > cur) {
+                    if (target - 1 > cur) {  // the steps before it in one call, as the run makes them
+                        replay(cur, target - 1 - cur);
+                        dense.start(y, time_of(target - 1));
+                    }
+                    if (target == i1) {
+                        dense.push(s, t);
+                    } else {
+                        replay(target - 1, 1);
+                        dense.push(y, time_of(target));
+                    }
+                    cur = target;
+                }
+                emit();
+            }
+            dense_end = cur;
+        }
+        start = s;
+        start_index = i1;
+    };
+    static_cast<run_summary&>(r) = integrate_until(stepper, x, t0, t_end, dt, observer, chunks);
+}
+}  // namespace detail
+
 // Runs stepper from x at t0 up to t_end with steps of dt and calls
 // callback(state, t) at each of output_times (sorted, within [t0, t_end])
 // with the state interpolated there (the end state itself when t is a step
@@ -141,72 +222,7 @@ dense_summary integrate_dense(Stepper& stepper, const H& h, typename Stepper::st
         // rounding when dt divides the span: the last polynomial covers the rest.
         while (next < output_times.size()) emit();
     } else {
-        static_assert(std::copy_constructible<Stepper>,
-                      "integrate_dense replays chunks of a stepper that groups steps on a copy of it: "
-                      "expected a copyable stepper");
-        const std::size_t n = plan.n, last = plan.rest > T(0) ? n + 1 : n;  // index of the last step end
-        const auto time_of = [&](std::size_t i) { return i <= n ? t0 + T(i) * dt : t_end; };
-        run_options chunks;  // integrate_until's defaults, observed once per chunk
-        chunks.observe_every = chunks.check_every;
-        const std::size_t chunk = chunks.check_every;
-        std::optional<Stepper> shadow;
-        State start = x, y = x;
-        std::size_t start_index = 0, dense_end = 0;  // dense_end: the interpolant's end, when it is a run state
-        // m steps of the copy from step index `from`, y its state.
-        const auto replay = [&](std::size_t from, std::size_t m) {
-            if (!shadow) shadow.emplace(stepper);
-            const auto f = detail::forces(*shadow), v = detail::velocities(*shadow);
-            detail::advance(*shadow, y, t0, dt, from, m, false);
-            r.replay_force_evaluations += detail::forces(*shadow) - f;
-            r.replay_velocity_evaluations += detail::velocities(*shadow) - v;
-            r.replayed_steps += m;
-        };
-        bool started = false;
-        auto observer = [&](const State& s, T t) {
-            if (!started) {
-                started = true;
-                dense.start(s, t);
-                while (next < output_times.size() && output_times[next] <= t) emit();
-                start = s;
-                return;
-            }
-            const std::size_t i1 = start_index < n ? std::min(start_index + chunk, n) : n + 1;
-            // The last chunk also takes times beyond its end by a rounding (see above).
-            const auto inside = [&] { return next < output_times.size() && (output_times[next] <= t || i1 == last); };
-            if (inside()) {
-                std::size_t cur = start_index;
-                if (dense_end != cur) dense.start(start, time_of(cur));
-                y = start;
-                while (inside()) {
-                    const T tau = output_times[next];
-                    if (tau == t && cur < i1) {  // the chunk's end: the run's own state, nothing to replay
-                        callback(std::as_const(s), tau);
-                        ++next;
-                        continue;
-                    }
-                    std::size_t target = cur;  // the step (target - 1, target] holding tau
-                    while (target < i1 && tau > time_of(target)) ++target;
-                    if (target > cur) {
-                        if (target - 1 > cur) {  // the steps before it in one call, as the run makes them
-                            replay(cur, target - 1 - cur);
-                            dense.start(y, time_of(target - 1));
-                        }
-                        if (target == i1) {
-                            dense.push(s, t);
-                        } else {
-                            replay(target - 1, 1);
-                            dense.push(y, time_of(target));
-                        }
-                        cur = target;
-                    }
-                    emit();
-                }
-                dense_end = cur;
-            }
-            start = s;
-            start_index = i1;
-        };
-        static_cast<run_summary&>(r) = integrate_until(stepper, x, t0, t_end, dt, observer, chunks);
+        detail::dense_by_chunks(stepper, x, t0, t_end, dt, plan, output_times, next, dense, emit, callback, r);
     }
     r.outputs = output_times.size();
     r.extra_force_evaluations = dense.force_evaluations();

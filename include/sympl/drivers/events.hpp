@@ -1,37 +1,29 @@
 #pragma once
-// Events located on the dense output (drivers/dense_output.hpp): a function
+// Events located on the dense output (dense_output.hpp): a function
 // g(state, t) of the orbit (q[1] for a Poincare section, q.p for pericentre
 // and apocentre passages, |q| - r for a close approach), its sign changes
-// found between step ends (and, optionally, at a few interior points of the
-// interpolant, so that g crossing zero and back within one step is not
-// missed), and each root located on the interpolant by Brent's method
-// (Brent 1973, "Algorithms for Minimization without Derivatives", ch. 4: the
-// bracket kept, inverse quadratic interpolation or secant steps when they
-// stay inside it, bisection otherwise).
+// found between step ends (and, optionally, at interior points of the step,
+// so that g crossing zero and back within one step is not missed), and each
+// root located by Brent's method (Brent 1973, "Algorithms for Minimization
+// without Derivatives", ch. 4) in the step's fraction th, on the step's
+// interpolant: the Hermite interpolant of event_options::order, or over a
+// controlled run the stepper's own interpolation where it has one.
 //
 // An event time is a zero of g along the interpolant to within
-// event_options::time_tolerance + 4 eps dt (the root is sought in the step's
-// fraction th, and the state is the interpolant's at th; the time reported,
-// t0 + th dt, is rounded to t's precision); the interpolant's own error
-// (dense_output.hpp: O(dt^4) for the cubic, O(dt^6) in q for the quintic,
-// plus the method's error at the step ends) moves it by that error over
-// |dg/dt|. A crossing counts in the step (ta, tb] in which g goes from < 0 to
-// >= 0 (rising) or from > 0 to <= 0 (falling): a zero at t0 is not an event,
-// one exactly at a step end is counted once.
+// event_options::time_tolerance + 4 eps dt; the interpolant's own error
+// moves it by that error over |dg/dt|. A crossing counts in the step (ta, tb]
+// in which g goes from < 0 to >= 0 (rising) or from > 0 to <= 0 (falling): a
+// zero at t0 is not an event, one exactly at a step end is counted once.
 //
-// The stepper runs exactly as integrate_until runs it with an observer (the
-// steps are not shortened to land on an event). An event whose action is
-// `stop` ends the run at the first such crossing: x is then the state
-// INTERPOLATED at the event time (not a state the stepper produced), the
-// stepper has taken the step containing the event and no further one, and
-// the events recorded are those up to and including it.
-//
-// section_crossings (poincare_section.hpp) is the event g = q[k], rising,
-// run through detail::run_events with integrate_steps' steps.
-//
-// Unlike integrate_dense, the run is the one integrate_until makes with an
-// observer at every step: a splitting stepper's kicks are then not joined
-// across steps, which changes its rounding against an unobserved run.
+// The steps are those integrate_until (or integrate_controlled) makes with an
+// observer at every step, not shortened to land on an event (a splitting
+// stepper's kicks are then not joined across steps, which changes its
+// rounding against an unobserved run). An event whose action is `stop` ends
+// the run at the first such crossing: x is then the state INTERPOLATED at the
+// event time, the stepper has taken the step containing the event and no
+// further one, and the events recorded are those up to and including it.
+// section_crossings (analysis/poincare_section.hpp) is the event g = q[k],
+// rising, run through detail::run_events with integrate_steps' steps.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -176,6 +168,36 @@ void check_events(const std::vector<event<State>>& events, const event_options& 
     }
 }
 
+// The crossings of the events inside one step, g sampled at `fractions` of
+// it (g_samples: one row of fractions.size() values per event), each located
+// by Brent's method in the fraction th on the interpolant; added to found.
+template <class State, class Interpolant, class G, class TimeAt>
+void crossings_in_step(Interpolant& dense, const std::vector<event<State>>& events,
+                       const std::vector<typename State::scalar>& g_samples,
+                       const std::vector<typename State::scalar>& fractions, typename State::scalar tolerance, G& g_of,
+                       TimeAt& time_at, State& y, std::vector<event_hit<State>>& found) {
+    using T = typename State::scalar;
+    const std::size_t m = fractions.size();
+    for (std::size_t i = 0; i < events.size(); ++i)
+        for (std::size_t j = 0; j + 1 < m; ++j) {
+            const T ga = g_samples[i * m + j], gb = g_samples[i * m + j + 1];
+            const bool rising = ga < 0 && gb >= 0, falling = ga > 0 && gb <= 0;
+            const auto d = events[i].direction;
+            if (!((rising && d != event_direction::falling) || (falling && d != event_direction::rising))) continue;
+            const auto along = [&](T th) {
+                dense.evaluate_fraction(th, y);
+                return g_of(i, y, time_at(th));
+            };
+            event_hit<State> hit;
+            hit.event = i;
+            hit.rising = rising;
+            const T th = brent_root(along, fractions[j], fractions[j + 1], ga, gb, tolerance);
+            hit.t = time_at(th);
+            dense.evaluate_fraction(th, hit.state);
+            found.push_back(std::move(hit));
+        }
+}
+
 // The events of a run that drive(observer) makes, observing every step, and
 // returns the summary of; stopped(steps) gives that summary when a stop
 // event ends the run after `steps` steps. dense interpolates each step
@@ -225,25 +247,7 @@ event_run<State, Summary> locate_events(Interpolant& dense, State& x, const std:
         }
         found.clear();
         // The root is sought in th: its rounding is relative to the step, not to t.
-        const T tolerance = T(options.time_tolerance) / step;
-        for (std::size_t i = 0; i < n_events; ++i)
-            for (std::size_t j = 0; j + 1 < m; ++j) {
-                const T ga = g_samples[i * m + j], gb = g_samples[i * m + j + 1];
-                const bool rising = ga < 0 && gb >= 0, falling = ga > 0 && gb <= 0;
-                const auto d = events[i].direction;
-                if (!((rising && d != event_direction::falling) || (falling && d != event_direction::rising))) continue;
-                const auto along = [&](T th) {
-                    dense.evaluate_fraction(th, y);
-                    return g_of(i, y, time_at(th));
-                };
-                event_hit<State> hit;
-                hit.event = i;
-                hit.rising = rising;
-                const T th = detail::brent_root(along, fractions[j], fractions[j + 1], ga, gb, tolerance);
-                hit.t = time_at(th);
-                dense.evaluate_fraction(th, hit.state);
-                found.push_back(std::move(hit));
-            }
+        crossings_in_step(dense, events, g_samples, fractions, T(options.time_tolerance) / step, g_of, time_at, y, found);
         std::stable_sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.t < b.t; });
         for (auto& hit : found) {
             const bool stop = events[hit.event].action == event_action::stop;

@@ -192,7 +192,7 @@ private:
             if (!(curvature > 0))
                 throw invalid_argument("step_interpolant: quintic order needs velocity(p) = M^-1 p with M symmetric "
                                        "positive definite, but d.velocity(d) = " +
-                                       detail::number(curvature) + "; expected > 0 (use hermite_order::cubic)");
+                                       detail::number_text(static_cast<long double>(primal(curvature))) + "; expected > 0 (use hermite_order::cubic)");
             const scalar alpha = rr / curvature;
             m_dq_ += alpha * direction_;
             residual_ -= alpha * image_;
