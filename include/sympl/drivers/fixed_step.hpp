@@ -1,5 +1,5 @@
 #pragma once
-// The driver: n steps, or up to t_end, with an optional observer.
+// The fixed-step drivers: n steps, or up to t_end, with an optional observer.
 //
 // Times are t = t0 + i*dt, never accumulated, and integrate_until lands exactly
 // on t_end (the last step is shortened when dt does not divide the span). The
