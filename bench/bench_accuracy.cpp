@@ -122,7 +122,7 @@ std::vector<contender> contenders(const problem<H, X, Y>& pr) {
                            auto s = sympl::make_rkn_stepper<P, X>(pr.h);
                            X x = pr.x0;
                            double worst = 0, next = 0;
-                           sympl::rkn_control control;
+                           sympl::control_options control;
                            control.absolute_tolerance = control.relative_tolerance = tol;
                            control.dt_initial = t_end / 1e4;  // as Odeint's
                            try {

@@ -63,9 +63,9 @@ int main() {
            std::fabs(sympl::energy(pendulum, y) / e0 - 1));
     auto er = sympl::make_classic<sympl::euler_richardson, K>(kepler);
     K z = sympl::hamiltonians::kepler::initial_state(0.5);
-    sympl::adaptive_options options;
-    options.tolerance = 1e-7;
-    const auto adaptive = sympl::integrate_adaptive(er, z, 0.0, 2 * pi, options);
+    sympl::control_options options = sympl::richardson_adaptive(er).default_control();
+    options.absolute_tolerance = 1e-7;
+    const auto adaptive = sympl::integrate_controlled(sympl::richardson_adaptive(er), z, 0.0, 2 * pi, options);
     const double adaptive_miss = sympl::max_difference(z, sympl::hamiltonians::kepler::initial_state(0.5));
     expect(adaptive_miss < 1e-3 && adaptive.accepted > 10, "adaptive Euler-Richardson, one Kepler period: miss", adaptive_miss);
 

@@ -18,7 +18,7 @@ namespace sympl::app {
 namespace detail {
 
 // Trajectory rows at given times (run_request::output_times), read off the
-// Hermite interpolant (methods/dense_output.hpp) of the step that holds each
+// Hermite interpolant (drivers/hermite_interpolant.hpp) of the step that holds each
 // time, between the states the observed run sees anyway: the run steps
 // exactly as without them. Only a separable Hamiltonian has the velocity and
 // force the interpolant needs (the program refuses other systems first).

@@ -41,7 +41,7 @@ struct run_request {
     std::size_t trajectory_every = 0;     // write t, q, p every k steps to *trajectory
     // Or write them at these times (sorted, in the span), interpolated inside
     // the steps by the Hermite interpolant of this order, 3 or 5 (5 needs T
-    // quadratic in p): separable Hamiltonians only (methods/dense_output.hpp).
+    // quadratic in p): separable Hamiltonians only (drivers/hermite_interpolant.hpp).
     std::vector<double> output_times;
     int output_order = 3;
     std::ostream* trajectory = nullptr;

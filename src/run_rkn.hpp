@@ -25,9 +25,9 @@ struct rkn_controlled_run {
     template <class C>
     static steps_and_forces run(const C& c) {
         auto stepper = make_rkn_stepper<Pair, typename C::State>(c.sys);
-        rkn_control control;
+        control_options control;
         control.absolute_tolerance = control.relative_tolerance = c.rq.tolerance;
-        rkn_summary s;
+        control_summary s;
         if constexpr (C::observed) {
             if (c.rq.checkpoint.every_steps) throw invalid_argument(why_not_resumable(c.m));
             s = integrate_controlled(stepper, c.x, c.t0, c.t_end, control, c.observe);

@@ -23,7 +23,7 @@ struct output_spec {
     bool energy_error = true;          // max relative energy error (and its series in `run`)
     std::size_t trajectory_every = 0;  // 0: no trajectory file
     // `times = [...]` or `{from, to, count}`: trajectory rows at these times,
-    // read off each step's Hermite interpolant (methods/dense_output.hpp); the
+    // read off each step's Hermite interpolant (drivers/hermite_interpolant.hpp); the
     // steps are the run's own. Sorted, inside [t0, t_end]; --quick drops those
     // past its shorter t_end (times_dropped counts them; the trajectory file is
     // still written, with the rows that remain, so that it is never missing).

@@ -58,10 +58,11 @@ void kepler_099_study(const study_context& c) {
         K x = x0;
         double worst = 0;
         auto s = make_classic<euler_richardson, K>(h);
-        adaptive_options o;
-        o.tolerance = tol;
+        auto adaptive = richardson_adaptive(s);
+        control_options o = adaptive.default_control();
+        o.absolute_tolerance = tol;
         o.dt_initial = 1e-4;
-        const auto r = integrate_adaptive(s, x, 0.0, period, o, [&](const K& y, double) {
+        const auto r = integrate_controlled(adaptive, x, 0.0, period, o, [&](const K& y, double) {
             worst = std::max(worst, std::fabs(energy(h, y) - e0) / std::fabs(e0));
         });
         line("adaptive euler_richardson", tol, r.accepted + r.rejected, r.force_evaluations, worst, x);

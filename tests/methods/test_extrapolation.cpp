@@ -8,7 +8,7 @@
 #include <sympl/methods/catalog.hpp>
 #include <sympl/analysis/convergence.hpp>
 #include <sympl/methods/extrapolation.hpp>
-#include <sympl/core/integrate.hpp>
+#include <sympl/drivers/fixed_step.hpp>
 #include <sympl/core/splitting_stepper.hpp>
 #include <sympl/methods/time_transformation.hpp>
 #include <sympl/hamiltonians/kepler.hpp>

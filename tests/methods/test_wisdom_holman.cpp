@@ -34,7 +34,7 @@
 
 #include <Eigen/Geometry>
 
-#include <sympl/core/integrate.hpp>
+#include <sympl/drivers/fixed_step.hpp>
 #include <sympl/core/splitting_stepper.hpp>
 #include <sympl/hamiltonians/outer_solar_system.hpp>
 #include <sympl/methods/catalog.hpp>

@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "../core/error.hpp"
-#include "../core/integrate.hpp"
-#include "events.hpp"
+#include "../drivers/fixed_step.hpp"
+#include "../drivers/events.hpp"
 
 namespace sympl {
 

@@ -18,7 +18,7 @@
 
 #include "../core/equations_of_motion.hpp"
 #include "../core/error.hpp"
-#include "../core/integrate.hpp"
+#include "../drivers/fixed_step.hpp"
 #include "../core/phase_space.hpp"
 #include "classic_stepper.hpp"
 

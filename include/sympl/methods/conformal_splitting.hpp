@@ -26,6 +26,7 @@
 
 #include "../core/error.hpp"
 #include "../core/hamiltonian.hpp"
+#include "../core/linear_velocity.hpp"
 #include "../core/phase_space.hpp"
 #include "../core/table.hpp"
 
@@ -293,31 +294,12 @@ private:
     }
 
     // The damped drift integrates dT/dp(p e^{-gamma s}) in closed form only
-    // when dT/dp is linear: tried once per dimension on two fixed momenta,
-    // v(a + 2b) against v(a) + 2 v(b) (not counted as evaluations).
+    // when dT/dp is linear (core/linear_velocity.hpp).
     void check_linear_velocity(Eigen::Index n) {
-        using std::abs;
-        vector a(n), b(n), sum(n), va(n), vb(n), vsum(n);
-        for (Eigen::Index i = 0; i < n; ++i) {
-            a[i] = scalar(0.75) + scalar(0.125) * scalar(i % 7);
-            b[i] = scalar(-1.5) + scalar(0.25) * scalar(i % 5);
-        }
-        sum = a + scalar(2) * b;
-        system_.velocity(a, va);
-        system_.velocity(b, vb);
-        system_.velocity(sum, vsum);
-        for (Eigen::Index i = 0; i < n; ++i) {
-            const scalar expected = va[i] + scalar(2) * vb[i];
-            const scalar scale = abs(va[i]) + scalar(2) * abs(vb[i]) + abs(vsum[i]);
-            if (!(abs(vsum[i] - expected) <= scalar(1e-10) * scale)) {
-                throw invalid_argument(
-                    "conformal_stepper: with damping gamma = " + detail::number_text(static_cast<long double>(primal(gamma_))) +
-                    " the drift needs dT/dp linear in p (T = p.M^-1.p / 2), but component " + std::to_string(i) +
-                    " of dT/dp(a + 2b) is " + detail::number_text(static_cast<long double>(primal(vsum[i]))) +
-                    " against dT/dp(a) + 2 dT/dp(b) = " + detail::number_text(static_cast<long double>(primal(expected))) +
-                    "; expected a quadratic kinetic energy");
-            }
-        }
+        sympl::check_linear_velocity<vector>([&](const vector& p, vector& v) { system_.velocity(p, v); }, n,
+                                             "conformal_stepper",
+                                             "the damped drift with damping gamma = " +
+                                                 detail::number_text(static_cast<long double>(primal(gamma_))));
     }
 
     static constexpr bool harmonic = harmonically_driven<System, vector>;

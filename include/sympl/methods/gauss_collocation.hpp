@@ -27,7 +27,7 @@
 #include "../core/error.hpp"
 #include "../core/general_hamiltonian.hpp"
 #include "../core/hamiltonian.hpp"
-#include "../core/integrate.hpp"
+#include "../drivers/fixed_step.hpp"
 #include "../core/phase_space.hpp"
 
 namespace sympl {

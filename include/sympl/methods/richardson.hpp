@@ -8,7 +8,7 @@
 #include <utility>
 
 #include "../core/error.hpp"
-#include "../core/integrate.hpp"
+#include "../drivers/fixed_step.hpp"
 #include "../core/phase_space.hpp"
 
 namespace sympl {

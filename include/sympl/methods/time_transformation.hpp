@@ -25,7 +25,7 @@
 
 #include "../core/error.hpp"
 #include "../core/hamiltonian.hpp"
-#include "../core/integrate.hpp"
+#include "../drivers/fixed_step.hpp"
 #include "../core/phase_space.hpp"
 
 namespace sympl {
@@ -173,9 +173,7 @@ run_summary integrate_to_time(Stepper& stepper, phase_space<S, D>& X, S t_end, S
     const S t0 = physical_time(X);
     if (!isfinite(ds) || !(ds > S(0)))
         throw invalid_argument("integrate_to_time: ds = " + detail::number(ds) + "; expected a finite step > 0");
-    if (!isfinite(t_end) || !(t_end > t0))
-        throw invalid_argument("integrate_to_time: t_end = " + detail::number(t_end) + " with t = " + detail::number(t0) +
-                               "; expected a finite t_end after t");
+    check_time_span("integrate_to_time", t0, t_end);
     std::vector<S> targets;
     for (S t : observation_times)
         if (t > t0 && t < t_end) targets.push_back(t);

@@ -6,14 +6,17 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include <sympl/sympl.hpp>
-#include <sympl/analysis/events.hpp>
+#include <sympl/drivers/events.hpp>
 #include <sympl/hamiltonians/harmonic_oscillator.hpp>
 #include <sympl/hamiltonians/kepler.hpp>
+#include <sympl/hamiltonians/pendulum.hpp>
+#include <sympl/methods/rkn_pairs.hpp>
 
-namespace test_analysis_test_events {  // one per file: the tests build in batches (CMakeLists.txt)
+namespace test_drivers_test_events {  // one per file: the tests build in batches (CMakeLists.txt)
 
 using namespace sympl;
 
@@ -275,4 +278,54 @@ TEST_CASE("events: bad events and options are refused, naming the value") {
                          invalid_argument);
 }
 
-}  // namespace test_analysis_test_events
+TEST_CASE("events over a controlled run: q = 0 of the pendulum by dprkn6, dprkn8, dprkn12 within 10 tolerances") {
+    // From q0 = 2.5 at rest (H = p^2/2 - cos q), q crosses 0 at (2n + 1) K(k),
+    // k = sin(q0 / 2), K the complete elliptic integral of the first kind:
+    // a quarter period (Landau & Lifshitz, Mechanics, sect. 11, problem 1).
+    const long double K = std::comp_ellint_1(std::sin(2.5L / 2));
+    using P1 = phase_space<double, 1>;
+    const std::vector<event<P1>> crossing{{[](const P1& y, double) { return y.q[0]; }, event_direction::both}};
+    const auto check_pair = [&]<class Pair>(double tol) {
+        auto s = make_rkn_stepper<Pair, P1>(hamiltonians::pendulum{});
+        P1 x(1);
+        x.q[0] = 2.5;
+        x.p[0] = 0;
+        control_options c;
+        c.absolute_tolerance = c.relative_tolerance = tol;
+        const auto run = integrate_events(s, x, 0.0, 20.0, c, crossing);
+        REQUIRE(run.hits.size() == 4);  // K = 2.58: K, 3K, 5K, 7K before t = 20
+        double worst = 0;
+        for (std::size_t n = 0; n < run.hits.size(); ++n) {
+            worst = std::max(worst, double(std::fabs(run.hits[n].t - (2 * n + 1) * K)));
+            CHECK(run.hits[n].rising == (n % 2 == 1));
+        }
+        MESSAGE(std::string(Pair::name), " at tolerance ", tol, ": ", run.accepted, " steps, crossing times off by ", worst);
+        // The time's error is q's error over |dq/dt| = |p| = sqrt(2 (1 - cos 2.5)) = 1.9
+        // at the crossing; q's error is within 10 tolerances (test_dense_output.cpp).
+        CHECK(worst <= 10 * tol);
+    };
+    for (double tol : {1e-8, 1e-10}) {
+        check_pair.template operator()<dprkn6>(tol);
+        check_pair.template operator()<dprkn8>(tol);
+        check_pair.template operator()<dprkn12>(tol);
+    }
+}
+
+TEST_CASE("events over a controlled run: a stop event ends the run with the accepted and rejected steps counted") {
+    using P1 = phase_space<double, 1>;
+    auto s = make_rkn_stepper<dprkn8, P1>(hamiltonians::pendulum{});
+    P1 x(1);
+    x.q[0] = 2.5;
+    x.p[0] = 0;
+    const std::vector<event<P1>> stop{
+        {[](const P1& y, double) { return y.q[0]; }, event_direction::falling, event_action::stop}};
+    const auto run = integrate_events(s, x, 0.0, 20.0, control_options{}, stop);
+    REQUIRE(run.hits.size() == 1);
+    CHECK(run.stopped);
+    CHECK(run.t == double(run.hits[0].t));
+    CHECK(std::fabs(x.q[0]) <= 1e-9);  // the state interpolated at the event
+    CHECK(run.accepted > 0);
+    CHECK(run.force_evaluations > 0);
+}
+
+}  // namespace test_drivers_test_events

@@ -1,5 +1,5 @@
 #pragma once
-// The driver: n steps, or up to t_end, with an optional observer.
+// The fixed-step drivers: n steps, or up to t_end, with an optional observer.
 //
 // Times are t = t0 + i*dt, never accumulated, and integrate_until lands exactly
 // on t_end (the last step is shortened when dt does not divide the span). The
@@ -16,9 +16,10 @@
 #include <sstream>
 #include <string>
 
-#include "dual.hpp"
-#include "error.hpp"
-#include "phase_space.hpp"
+#include "../core/dual.hpp"
+#include "../core/error.hpp"
+#include "../core/phase_space.hpp"
+#include "../core/time_span.hpp"
 
 namespace sympl {
 
@@ -153,7 +154,7 @@ void check_dt(T dt, const char* who) {
 
 // integrate_until's steps from t0 to t_end: n steps of dt, then one of `rest`
 // when rest > 0 (the span checked first; `who` names the caller in errors).
-// integrate_dense (methods/dense_output.hpp) needs the same step indices.
+// integrate_dense (drivers/dense_output.hpp) needs the same step indices.
 template <class T>
 struct until_steps {
     std::size_t n = 0;
@@ -164,9 +165,7 @@ until_steps<T> until_plan(T t0, T t_end, T dt, const char* who) {
     using std::isfinite;
     using std::floor;
     check_dt(dt, who);
-    if (!isfinite(t0) || !isfinite(t_end) || !(t_end > t0))
-        throw invalid_argument(std::string(who) + ": t_end = " + number(t_end) + " with t0 = " + number(t0) +
-                               "; expected finite times with t_end > t0");
+    check_time_span(who, t0, t_end);
     const T span = t_end - t0;
     // The step count must fit before it is converted (a float beyond the
     // integer range is undefined behaviour).

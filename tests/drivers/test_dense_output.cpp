@@ -11,11 +11,15 @@
 #include <vector>
 
 #include <sympl/sympl.hpp>
-#include <sympl/methods/dense_output.hpp>
+#include <sympl/drivers/dense_output.hpp>
 #include <sympl/hamiltonians/harmonic_oscillator.hpp>
 #include <sympl/hamiltonians/kepler.hpp>
+#include <sympl/hamiltonians/pendulum.hpp>
+#include <sympl/methods/rkn_pairs.hpp>
 
-namespace test_methods_test_dense_output {  // one per file: the tests build in batches (CMakeLists.txt)
+#include <random>
+
+namespace test_drivers_test_dense_output {  // one per file: the tests build in batches (CMakeLists.txt)
 
 using namespace sympl;
 
@@ -370,4 +374,103 @@ TEST_CASE("dense output: a dynamic-size state gives the fixed-size state's value
     }
 }
 
-}  // namespace test_methods_test_dense_output
+namespace {
+using P1 = phase_space<double, 1>;
+using L1 = phase_space<long double, 1>;
+constexpr double pendulum_span = 20;  // about two periods from q = 2.5 at rest
+
+// 1000 times in [0, 20], uniform, fixed seed, sorted.
+std::vector<double> random_times() {
+    std::mt19937_64 generator(37);
+    std::uniform_real_distribution<double> uniform(0, pendulum_span);
+    std::vector<double> t(1000);
+    for (double& v : t) v = uniform(generator);
+    std::sort(t.begin(), t.end());
+    return t;
+}
+
+// The reference: dprkn12 in long double at tolerance 1e-18, run to land
+// exactly on each time (no interpolation), from q = 2.5, p = 0.
+std::vector<L1> pendulum_reference(const std::vector<double>& times) {
+    auto s = make_rkn_stepper<dprkn12, L1>(hamiltonians::pendulum{});
+    L1 x(1);
+    x.q[0] = 2.5L;
+    x.p[0] = 0;
+    control_options c;
+    c.absolute_tolerance = c.relative_tolerance = 1e-18;
+    std::vector<L1> out;
+    long double t = 0;
+    for (double tau : times) {
+        if (tau > t) integrate_controlled(s, x, t, static_cast<long double>(tau), c);
+        t = tau;
+        out.push_back(x);
+    }
+    return out;
+}
+
+template <class Pair>
+void check_pair_dense(double tol, const std::vector<double>& times, const std::vector<L1>& reference) {
+    auto s = make_rkn_stepper<Pair, P1>(hamiltonians::pendulum{});
+    P1 x(1);
+    x.q[0] = 2.5;
+    x.p[0] = 0;
+    control_options c;
+    c.absolute_tolerance = c.relative_tolerance = tol;
+    double worst = 0;
+    std::size_t i = 0;
+    const auto r = integrate_dense(s, x, 0.0, pendulum_span, c, std::span<const double>(times), [&](const P1& y, double) {
+        worst = std::max({worst, double(std::fabs(y.q[0] - reference[i].q[0])),
+                          double(std::fabs(y.p[0] - reference[i].p[0]))});
+        ++i;
+    });
+    MESSAGE(std::string(Pair::name), " at tolerance ", tol, ": ", r.accepted, " steps, dense output off by ", worst, " = ",
+            worst / tol, " tol, ", r.extra_force_evaluations, " extra forces");
+    CHECK(i == times.size());
+    CHECK(r.outputs == times.size());
+    // A dense value carries the run's error at the step's start, within 10
+    // tolerances by the pairs' tolerance proportionality (test_rkn_pairs.cpp,
+    // band_high), plus the interpolation's own: the continuous extension's
+    // (dprkn6, order 6 in q, 5 in p) or a partial step's local error, both at
+    // most the step's, which the control holds below one tolerance.
+    CHECK(worst <= 10 * tol);
+    // Partial steps (dprkn8, dprkn12) cost s - 1 forces per value; dprkn6's extension none.
+    const std::uint64_t per_value = rkn_dense_table<Pair> ? 0 : Pair::stages - 1;
+    CHECK(r.extra_force_evaluations <= per_value * times.size());
+}
+}  // namespace
+
+TEST_CASE("dense output over a controlled run: dprkn6, dprkn8, dprkn12 on the pendulum within 10 tolerances at 1000 times") {
+    const std::vector<double> times = random_times();
+    const std::vector<L1> reference = pendulum_reference(times);
+    for (double tol : {1e-8, 1e-10}) {
+        check_pair_dense<dprkn6>(tol, times, reference);
+        check_pair_dense<dprkn8>(tol, times, reference);
+        check_pair_dense<dprkn12>(tol, times, reference);
+    }
+}
+
+TEST_CASE("dense output over a controlled run: a stepper without its own interpolation gets the Hermite interpolant") {
+    // Euler-Richardson through richardson_adaptive, on the oscillator: the
+    // cubic Hermite's error dt^4/384 max|x^(4)| (dt <= 0.1, |x^(4)| <= 1) is
+    // added to the run's own error, bounded by the steps' local errors summed
+    // (a rotation does not grow them): accepted * tolerance.
+    auto er = make_classic<euler_richardson, S2>(oscillator);
+    S2 x = oscillator_start;
+    auto adaptive = richardson_adaptive(er);
+    control_options o = adaptive.default_control();
+    o.absolute_tolerance = 1e-7;
+    o.dt_max = 0.1;
+    const std::vector<double> times{0.0, 0.05, 1.234, 3.0, two_pi};
+    double worst = 0;
+    std::size_t i = 0;
+    const auto r = integrate_dense(adaptive, oscillator, x, 0.0, two_pi, o, std::span<const double>(times),
+                                   [&](const S2& y, double t) {
+                                       CHECK(t == times[i++]);
+                                       worst = std::max(worst, max_difference(y, oscillator_exact(t)));
+                                   });
+    CHECK(i == times.size());
+    CHECK(r.extra_force_evaluations > 0);
+    CHECK(worst <= double(r.accepted) * o.absolute_tolerance + std::pow(0.1, 4) / 384);
+}
+
+}  // namespace test_drivers_test_dense_output

@@ -7,7 +7,7 @@
 #include <sympl/hamiltonians/harmonic_oscillator.hpp>
 #include <sympl/hamiltonians/kepler.hpp>
 
-namespace test_core_test_integrate {  // one per file: the tests build in batches (CMakeLists.txt)
+namespace test_drivers_test_fixed_step {  // one per file: the tests build in batches (CMakeLists.txt)
 
 using namespace sympl;
 
@@ -152,4 +152,4 @@ TEST_CASE("a resume point that would group the steps differently is refused") {
     CHECK_THROWS_WITH_AS(d.restore(bad), doctest::Contains("memory of sizes 3, 3, 0, 0 (compensated)"), invalid_argument);
 }
 
-}  // namespace test_core_test_integrate
+}  // namespace test_drivers_test_fixed_step
