@@ -106,10 +106,9 @@ struct odeint_run {
         progress at{.t = t0};
         std::size_t steps = 0;
         try {
-            if (every_step)
-                steps = odeint::integrate_adaptive(stepper, f, y, t0, t_end, dt, checking_observer(at));
-            else
-                steps = odeint::integrate_adaptive(stepper, f, y, t0, t_end, dt);
+            if constexpr (!controlled)
+                if (!every_step) steps = odeint::integrate_adaptive(stepper, f, y, t0, t_end, dt);
+            if (every_step) steps = odeint::integrate_adaptive(stepper, f, y, t0, t_end, dt, checking_observer(at));
         } catch (const odeint::step_adjustment_error&) {
             throw integration_error(m.name + ": Boost.Odeint rejected 500 step sizes in a row from t = " +
                                         format_number(at.t, 17) + " (tolerance " + format_number(rq.tolerance, 3) +

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <sympl/methods/catalog.hpp>
@@ -125,6 +126,25 @@ TEST_CASE("method kinds: resumability comes from the registry row, and a refused
     for (const char* name : {"leapfrog_kdk", "chin_4a", "rk4", "gauss_4", "dprkn8", "semiexplicit(leapfrog_kdk)"}) {
         CAPTURE(name);
         CHECK(checkpointed_run(pendulum, name) == 3);  // after steps 3, 6 and 9 of 10
+    }
+}
+
+// Odeint's integrate_adaptive drives the Odeint kinds; its observer stops a
+// non-finite state with the message sympl's drivers give: the step, the time
+// it started from and its size (dopri5's first step is a thousandth of the span).
+TEST_CASE("method kinds: an Odeint run that blows up says at which step, from where and with what step") {
+    const problem p = make_problem("harmonic_oscillator", {}, {}, {}, "test");
+    run_request rq;
+    rq.dt = 1e100;
+    rq.tolerance = 1e-9;
+    rq.timing_repeats = 0;
+    for (const auto& [name, says] : {std::pair{"odeint_rk4", "step 1 (from t = 0 with dt = 1e+100) produced a non-finite"},
+                                     std::pair{"odeint_dopri5", "step 1 (from t = 0 with dt = 1e+98) produced a non-finite"}}) {
+        CAPTURE(name);
+        const run_result r = p.run(*resolve_method(name, {}), rq, 0.0, 1e101, p.x0);
+        CHECK_FALSE(r.stable);
+        CHECK(r.blowup_step == 1);
+        CHECK(r.failure.find(says) != std::string::npos);
     }
 }
 
