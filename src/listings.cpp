@@ -37,7 +37,13 @@ void print_systems(bool json) {
                       << p.expected() << "; " << p.meaning << "\n";
     }
     std::cout << "\nmethod kinds:\n";
-    for (const auto& k : method_kinds()) std::cout << "    " << std::left << std::setw(19) << k.label << k.description << "\n";
+    const auto line = [](const char* label, const char* description) {
+        std::cout << "    " << std::left << std::setw(19) << label << description << "\n";
+    };
+    for (const auto& k : method_kinds()) {
+        if (k.members.empty()) line(k.label, k.description);
+        for (const named_method& member : k.members) line(k.label, member.description);
+    }
     std::cout << "besides the catalog's tables (sympl tables) and a scene's own [[table]]s:";
     for (const auto& name : method_names_beside_tables()) std::cout << " " << name;
     std::cout << "\n";

@@ -20,6 +20,16 @@ static_assert([] {
     return true;
 }());
 
+// A controlled run has no checkpointed driver: its row says why it cannot resume.
+static_assert([] {
+    for (const method_kind_entry& row : method_kind_entries)
+        for (const named_method& member : row.members)
+            if (member.parameters.control == step_control::controlled && !*row.not_resumable &&
+                !*row.controlled_not_resumable)
+                return false;
+    return true;
+}());
+
 const std::array<method_kind_entry, method_kind_count>& method_kinds() { return method_kind_entries; }
 
 classic_facts classic_at(std::size_t index) {
@@ -31,67 +41,26 @@ classic_facts classic_at(std::size_t index) {
     return facts;
 }
 
-std::string why_not(needs n, const system_form& form) {
-    switch (n) {
-        case needs::any: return "";
-        case needs::separable_hamiltonian:
-            if (form.separable_hamiltonian) return "";
-            return form.general_hamiltonian ? "needs a separable Hamiltonian H = T(p) + V(q); this system's H(q, p) does "
-                                              "not split (use gauss_4, gauss_6, semiexplicit(<table>) or tao(<table>))"
-                                            : "needs a separable Hamiltonian H = T(p) + V(q); this system is not "
-                                              "Hamiltonian (use a classic method)";
-        case needs::general_hamiltonian:
-            return form.general_hamiltonian || form.separable_hamiltonian
-                       ? ""
-                       : "needs a Hamiltonian H(q, p); this system is not Hamiltonian (use a classic method)";
-        case needs::quadratic_kinetic:
-            if (!form.separable_hamiltonian) return why_not(needs::separable_hamiltonian, form);
-            return form.quadratic_kinetic ? ""
-                                          : "needs a kinetic energy quadratic in p (the Runge-Kutta-Nystrom form q'' = "
-                                            "F(q)); this system's is not (use a table)";
-        case needs::newtonian:
-            return form.newtonian ? ""
-                                  : "needs Newton's form x'' = a(x, v, t); this system is Hamiltonian (use velocity_verlet)";
-        case needs::splitting:
-            if (form.separable_hamiltonian || form.conformal) return "";
-            return form.general_hamiltonian
-                       ? "needs a separable Hamiltonian H = T(p) + V(q) or a damped, driven one (dp/dt = F(q, t) - gamma "
-                         "p); this system's H(q, p) does not split (use gauss_4, gauss_6, semiexplicit(<table>) or "
-                         "tao(<table>))"
-                       : "needs a separable Hamiltonian H = T(p) + V(q) or a damped, driven one (dp/dt = F(q, t) - "
-                         "gamma p); this system is neither (use a classic method)";
-        case needs::damped_split:
-            return form.damped_split ? "" : "needs a force split as F(x, t) - G(v); only damped_oscillator has one";
-        case needs::differentiable_force:
-            if (!form.separable_hamiltonian) return why_not(needs::separable_hamiltonian, form);
-            return form.differentiable_force ? ""
-                                             : "needs the force's derivative J_F(q) u (force-gradient kicks); this "
-                                               "system gives neither force_derivative nor a potential templated on its "
-                                               "scalar (use a table without force-gradient kicks)";
-        case needs::negative_potential:
-            if (!form.separable_hamiltonian) return why_not(needs::separable_hamiltonian, form);
-            return form.negative_potential ? ""
-                                           : "needs V(q) < 0 everywhere (the LogH time transformation divides by -V); "
-                                             "this system's potential is not negative (use the table itself)";
-        case needs::planetary:
-            return form.planetary ? ""
-                                  : "needs a planetary system (a star and planets with masses and G; "
-                                    "outer_solar_system); this system is not one (use the table itself)";
-    }
-    return "needs what no system offers";
-}
-
 std::vector<std::string> method_names_beside_tables() {
     std::vector<std::string> names;
     std::apply([&](const auto&... m) { (names.push_back(m.name), ...); }, classic_methods);
     for (const method_kind_entry& k : method_kind_entries)
-        if (*k.scene_name) names.push_back(k.scene_name);
+        for (const named_method& member : k.members) names.push_back(member.name);
     for (const table& t : force_gradient_catalog()) names.push_back(t.name());
     for (const processed_method& m : processed_catalog()) names.push_back(m.name);
     return names;
 }
 
 namespace {
+// A method of `kind` by `name`, every other field at its default.
+method_spec spec(const std::string& name, method_kind kind, std::optional<table> coefficients = std::nullopt) {
+    method_spec m;
+    m.name = name;
+    m.kind = kind;
+    m.coefficients = std::move(coefficients);
+    return m;
+}
+
 std::optional<std::size_t> classic_index(const std::string& name) {
     for (std::size_t k = 0; k < classic_method_count; ++k)
         if (name == classic_at(k).name) return k;
@@ -141,7 +110,7 @@ method_spec on_extended_phase_space(const std::string& name, method_kind kind, s
     if (!inner || inner->kind != method_kind::table || inner->extrapolation_columns || inner->compensated)
         throw invalid_argument("method '" + name + "': '" + inner_name + "' is not a table" + usage);
     sympl::detail::leapfrog_composition_weights(*inner->coefficients, "method '" + name + "'");  // throws naming it
-    return method_spec{name, kind, inner->coefficients};
+    return spec(name, kind, inner->coefficients);
 }
 
 // wh(<table>[, corrector = K][, kernel = composition|lazy][, coordinates =
@@ -155,7 +124,7 @@ method_spec wisdom_holman(const std::string& name, const std::map<std::string, t
                               "[, corrector = 3|5|7|9|11|17][, kernel = composition|lazy]"
                               "[, coordinates = democratic_heliocentric|jacobi])";
     std::string inner_name = name.substr(3, name.size() - 4);
-    method_spec m{name, method_kind::wisdom_holman, std::nullopt};
+    method_spec m = spec(name, method_kind::wisdom_holman);
     // Options from the right, `key = value`; what is left is the table's name
     // (an inline table's name may itself hold commas).
     std::set<std::string> seen;
@@ -211,7 +180,7 @@ wisdom_holman_options wisdom_holman_options_of(const method_spec& m) {
 
 std::optional<method_spec> resolve_method(const std::string& name, const std::map<std::string, table>& inline_tables) {
     if (name.size() > 14 && name.rfind("extrapolated(", 0) == 0 && name.back() == ')') return extrapolated(name, inline_tables);
-    if (auto it = inline_tables.find(name); it != inline_tables.end()) return method_spec{name, method_kind::table, it->second};
+    if (auto it = inline_tables.find(name); it != inline_tables.end()) return spec(name, method_kind::table, it->second);
     if (name.size() > 13 && name.rfind("compensated(", 0) == 0 && name.back() == ')') {
         auto inner = resolve_method(name.substr(12, name.size() - 13), inline_tables);
         if (!inner || inner->kind != method_kind::table || inner->extrapolation_columns) return std::nullopt;
@@ -226,7 +195,7 @@ std::optional<method_spec> resolve_method(const std::string& name, const std::ma
         if (inner->coefficients->has_force_gradient())
             throw invalid_argument("method '" + name + "': '" + inner->name +
                                    "' has force-gradient kicks; expected logh(<table without them>)");
-        return method_spec{name, method_kind::logh, inner->coefficients};
+        return spec(name, method_kind::logh, inner->coefficients);
     }
     if (name.size() > 4 && name.rfind("wh(", 0) == 0 && name.back() == ')') return wisdom_holman(name, inline_tables);
     if (name.size() > 5 && name.rfind("tao(", 0) == 0 && name.back() == ')')
@@ -234,27 +203,38 @@ std::optional<method_spec> resolve_method(const std::string& name, const std::ma
     if (name.size() > 14 && name.rfind("semiexplicit(", 0) == 0 && name.back() == ')')
         return on_extended_phase_space(name, method_kind::semiexplicit, 13, inline_tables);
     for (const method_kind_entry& k : method_kind_entries)
-        if (*k.scene_name && name == k.scene_name) return method_spec{name, k.kind, std::nullopt};
+        for (const named_method& member : k.members)
+            if (name == member.name) {
+                method_spec m = spec(name, k.kind);
+                m.parameters = member.parameters;
+                return m;
+            }
     if (const auto index = classic_index(name)) {
-        method_spec m{name, method_kind::classic, std::nullopt};
+        method_spec m = spec(name, method_kind::classic);
         m.classic = *index;
         return m;
     }
     const auto& names = catalog_names();
-    if (std::find(names.begin(), names.end(), name) != names.end()) return method_spec{name, method_kind::table, method(name)};
+    if (std::find(names.begin(), names.end(), name) != names.end()) return spec(name, method_kind::table, method(name));
     for (const table& t : force_gradient_catalog())
-        if (t.name() == name) return method_spec{name, method_kind::table, t};
+        if (t.name() == name) return spec(name, method_kind::table, t);
     for (const processed_method& p : processed_catalog())
-        if (p.name == name) return method_spec{name, method_kind::processed, std::nullopt, p};
+        if (p.name == name) {
+            method_spec m = spec(name, method_kind::processed);
+            m.processing = p;
+            return m;
+        }
     return std::nullopt;
 }
 
 std::string why_not_resumable(const method_spec& m) {
-    const std::string why = m.kind == method_kind::classic && classic_at(m.classic).history
-                                ? "it carries a history between steps that the state does not hold"
-                            : m.extrapolation_columns > 0 ? "its extrapolation combines runs that a checkpoint does not hold"
-                                                          : entry_of(m.kind).not_resumable;
-    return why.empty() ? "" : "method '" + m.name + "' cannot be checkpointed: " + why;
+    const method_kind_entry& row = entry_of(m.kind);
+    const bool history = m.kind == method_kind::classic && classic_at(m.classic).history;
+    for (const char* why : {history ? row.history_not_resumable : "",
+                            m.extrapolation_columns > 0 ? row.extrapolated_not_resumable : "", row.not_resumable,
+                            adaptive(m) ? row.controlled_not_resumable : ""})
+        if (*why) return "method '" + m.name + "' cannot be checkpointed: " + why;
+    return "";
 }
 
 needs requirement_of(const method_spec& m) {

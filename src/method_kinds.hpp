@@ -1,13 +1,17 @@
 #pragma once
-// Every kind of method the program runs, one descriptor each: its name in
-// scenes, what it needs of a system, whether a run can be checkpointed, how
-// the report labels it. How a kind runs is its run_kind<K> in run_kinds.hpp,
-// read by every system through the one dispatch there. Adding a kind is a row
-// here plus its run_kind; adding a classic stepper is a line in classic_methods.
+// Every kind of method the program runs, one row each: its names in scenes
+// (a family's members with their parameters: stages, pair, step control,
+// Odeint stepper), what it needs of a system, whether a run can be
+// checkpointed, how the report labels it. How a kind runs is its run_kind<K>
+// in run_kinds.hpp, read by every system through the one dispatch there.
+// Adding a kind is a row here plus its run_kind; adding a member to a family
+// is a line in its members; adding a classic stepper is a line in
+// classic_methods.
 #include <array>
 #include <cstddef>
 #include <map>
 #include <optional>
+#include <span>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -16,6 +20,8 @@
 #include <sympl/methods/classic_steppers.hpp>
 #include <sympl/methods/processing.hpp>
 
+#include "requirements.hpp"
+
 namespace sympl {
 struct wisdom_holman_options;  // methods/wisdom_holman.hpp
 }
@@ -23,59 +29,87 @@ struct wisdom_holman_options;  // methods/wisdom_holman.hpp
 namespace sympl::app {
 
 enum class method_kind {
-    table, processed, logh, classic, odeint_rk4, odeint_dopri5, odeint_fehlberg78, odeint_bulirsch_stoer,
-    gauss_2, gauss_4, gauss_6, tao, semiexplicit,
-    dprkn6, dprkn8, dprkn12, dprkn6_controlled, dprkn8_controlled, dprkn12_controlled, wisdom_holman,
+    table, processed, logh, classic, odeint, gauss, tao, semiexplicit, dprkn, wisdom_holman,
 };
 inline constexpr std::size_t method_kind_count = std::size_t(method_kind::wisdom_holman) + 1;
 
-// What a system's equations offer a method.
-struct system_form {
-    bool separable_hamiltonian = false;  // H = T(p) + V(q): what a splitting table needs
-    bool newtonian = false;              // x'' = a(x, v, t), q = x and p = v
-    bool damped_split = false;           // a force split as F(x, t) - G(v)
-    bool negative_potential = false;     // V(q) < 0 everywhere (gravitation): what LogH needs
-    bool differentiable_force = false;   // J_F(q) u, analytic or by dual numbers: what force-gradient kicks need
-    bool conformal = false;              // dp/dt = F(q, t) - gamma p with dq/dt linear in p: damped tables
-    bool general_hamiltonian = false;    // any H(q, p), separable or not: Gauss-Legendre, Tao, semiexplicit
-    bool quadratic_kinetic = false;      // separable with T quadratic in p (dq/dt linear in p): the RKN pairs
-    bool planetary = false;              // a star and planets with masses and G: Wisdom-Holman splitting
+enum class step_control { fixed, controlled };  // controlled: swept over tolerances instead of step sizes
+enum class odeint_stepper { rk4, dopri5, fehlberg78, bulirsch_stoer };
+enum class rkn_pair { dprkn6, dprkn8, dprkn12 };
+
+// What a named member of a family adds to its kind (the rest is the row's).
+struct method_parameters {
+    step_control control = step_control::fixed;
+    int stages = 0;                                // gauss: s stages, order 2s
+    rkn_pair pair = rkn_pair::dprkn6;              // dprkn
+    odeint_stepper stepper = odeint_stepper::rk4;  // odeint
+    friend constexpr bool operator==(const method_parameters&, const method_parameters&) = default;
 };
 
-enum class needs {
-    any,
-    separable_hamiltonian,
-    newtonian,
-    damped_split,
-    negative_potential,
-    differentiable_force,
-    splitting,  // a kick-drift table: a separable Hamiltonian, or a damped, driven one (conformal_splitting.hpp)
-    general_hamiltonian,  // any H(q, p) (general_hamiltonian.hpp), a separable one too
-    quadratic_kinetic,    // a separable Hamiltonian whose T is quadratic in p: q'' = F(q) (rkn_pairs.hpp)
-    planetary,            // point masses about a star, with `mass` (star first) and `G` (wisdom_holman.hpp)
+// A scene name that is one method of a family, e.g. dprkn12_controlled.
+struct named_method {
+    const char* name;
+    method_parameters parameters;
+    const char* description;  // for listings
 };
 
-// Why a method that needs `n` cannot run on a system of `form` ("" when it can).
-std::string why_not(needs n, const system_form& form);
-
+// One row per kind: what every method of the kind shares. Whether a method can
+// resume from a checkpoint is read here only (why_not_resumable).
 struct method_kind_entry {
     method_kind kind;
-    const char* label;             // the kind column of work_precision.csv
-    const char* scene_name = "";   // the name a scene gives, for kinds that are one method (the Odeint steppers)
-    bool adaptive = false;         // swept over tolerances instead of step sizes
-    bool physical_time = true;     // dt is a step in physical time (not a tolerance, not LogH's fictitious step)
-    bool odeint = false;           // a Boost.Odeint stepper (the report's competitors)
-    needs requirement = needs::any;  // classic methods: per method, see classic_methods
-    const char* not_resumable = "";  // why a checkpointed run cannot resume bit for bit ("" when it can)
-    const char* description = "";    // for listings and error messages
+    const char* label;                     // the kind column of work_precision.csv
+    std::span<const named_method> members = {};  // a family's scene names; empty for kinds named by a pattern
+    bool fictitious_time = false;          // dt is LogH's fictitious step, not a step in physical time
+    bool odeint = false;                   // a Boost.Odeint stepper (the report's competitors)
+    needs requirement = needs::any;        // classic methods: per method, see classic_methods
+    const char* not_resumable = "";        // why no method of the kind can resume bit for bit ("" when they can)
+    const char* controlled_not_resumable = "";    // why its step-size controlled members cannot
+    const char* extrapolated_not_resumable = "";  // why its extrapolated(...) methods cannot
+    const char* history_not_resumable = "";       // why its steppers with a history (classic_methods) cannot
+    const char* description = "";          // for listings and error messages (kinds named by a pattern)
 };
 
-inline constexpr const char* rkn_controlled_not_resumable =
-    "its step-size controller carries the step size and the last error between steps, which a checkpoint does not hold";
+inline constexpr std::array odeint_members{
+    named_method{"odeint_rk4", {.stepper = odeint_stepper::rk4}, "Boost.Odeint runge_kutta4, fixed step"},
+    named_method{"odeint_dopri5", {.control = step_control::controlled, .stepper = odeint_stepper::dopri5},
+                 "Boost.Odeint controlled runge_kutta_dopri5, absolute = relative tolerance"},
+    named_method{"odeint_fehlberg78", {.control = step_control::controlled, .stepper = odeint_stepper::fehlberg78},
+                 "Boost.Odeint controlled runge_kutta_fehlberg78, absolute = relative tolerance"},
+    named_method{"odeint_bulirsch_stoer",
+                 {.control = step_control::controlled, .stepper = odeint_stepper::bulirsch_stoer},
+                 "Boost.Odeint bulirsch_stoer, absolute = relative tolerance"},
+};
+
+inline constexpr std::array gauss_members{
+    named_method{"gauss_2", {.stages = 1},
+                 "implicit Gauss-Legendre collocation, s = 1 (the implicit midpoint rule), order 2: symplectic for "
+                 "any H(q, p), separable or not"},
+    named_method{"gauss_4", {.stages = 2}, "implicit Gauss-Legendre collocation, s = 2, order 4, any H(q, p)"},
+    named_method{"gauss_6", {.stages = 3}, "implicit Gauss-Legendre collocation, s = 3, order 6, any H(q, p)"},
+};
+
+inline constexpr std::array dprkn_members{
+    named_method{"dprkn6", {.pair = rkn_pair::dprkn6},
+                 "not symplectic: Dormand-Prince RKN6(4) pair, fixed step (the order-6 result)"},
+    named_method{"dprkn8", {.pair = rkn_pair::dprkn8},
+                 "not symplectic: Dormand-El-Mikkawy-Prince RKN8(6) pair, fixed step"},
+    named_method{"dprkn12", {.pair = rkn_pair::dprkn12},
+                 "not symplectic: Dormand-El-Mikkawy-Prince RKN12(10) pair, fixed step"},
+    named_method{"dprkn6_controlled", {.control = step_control::controlled, .pair = rkn_pair::dprkn6},
+                 "not symplectic: dprkn6 with its step size controlled, absolute = relative tolerance"},
+    named_method{"dprkn8_controlled", {.control = step_control::controlled, .pair = rkn_pair::dprkn8},
+                 "not symplectic: dprkn8 with its step size controlled, absolute = relative tolerance"},
+    named_method{"dprkn12_controlled", {.control = step_control::controlled, .pair = rkn_pair::dprkn12},
+                 "not symplectic: dprkn12 with its step size controlled, absolute = relative tolerance"},
+};
+
+inline constexpr const char* extrapolation_not_resumable =
+    "its extrapolation combines runs that a checkpoint does not hold";
 
 // The registry, in the order of method_kind.
 inline constexpr std::array<method_kind_entry, method_kind_count> method_kind_entries{{
     {.kind = method_kind::table, .label = "table", .requirement = needs::splitting,
+     .extrapolated_not_resumable = extrapolation_not_resumable,
      .description = "a splitting table: the catalog's (sympl tables) or a scene's own [[table]], on a separable "
                     "Hamiltonian or, with exact damped drifts, on a damped, driven system; extrapolated(<symmetric "
                     "table>, k) extrapolates it over k runs of 1..k steps (order p + 2(k - 1)); compensated(<table>) sums "
@@ -85,34 +119,17 @@ inline constexpr std::array<method_kind_entry, method_kind_count> method_kind_en
      .not_resumable = "its kernel runs on a processed state that the true state does not hold",
      .description = "a processed method (blanes_2001_p6, ...): a kernel every step, its processor only where the state is "
                     "looked at; every output is the true state"},
-    {.kind = method_kind::logh, .label = "logh", .physical_time = false, .requirement = needs::negative_potential,
+    {.kind = method_kind::logh, .label = "logh", .fictitious_time = true, .requirement = needs::negative_potential,
      .not_resumable = "its steps are in fictitious time, which a checkpoint does not record",
+     .extrapolated_not_resumable = extrapolation_not_resumable,
      .description = "logh(<table>): the table in LogH fictitious time (Mikkola & Tanikawa 1999); dt is the fictitious "
                     "step; extrapolated(logh(<symmetric table>), k) as above"},
     {.kind = method_kind::classic, .label = "classic",
+     .history_not_resumable = "it carries a history between steps that the state does not hold",
      .description = "a classic stepper of Gould & Tobochnik or Sandvik"},
-    {.kind = method_kind::odeint_rk4, .label = "odeint", .scene_name = "odeint_rk4", .odeint = true,
-     .not_resumable = "it is Boost.Odeint's stepper, whose state a checkpoint does not hold",
-     .description = "Boost.Odeint runge_kutta4, fixed step"},
-    {.kind = method_kind::odeint_dopri5, .label = "odeint", .scene_name = "odeint_dopri5", .adaptive = true,
-     .physical_time = false, .odeint = true,
-     .not_resumable = "it is Boost.Odeint's stepper, whose state a checkpoint does not hold",
-     .description = "Boost.Odeint controlled runge_kutta_dopri5, absolute = relative tolerance"},
-    {.kind = method_kind::odeint_fehlberg78, .label = "odeint", .scene_name = "odeint_fehlberg78", .adaptive = true,
-     .physical_time = false, .odeint = true,
-     .not_resumable = "it is Boost.Odeint's stepper, whose state a checkpoint does not hold",
-     .description = "Boost.Odeint controlled runge_kutta_fehlberg78, absolute = relative tolerance"},
-    {.kind = method_kind::odeint_bulirsch_stoer, .label = "odeint", .scene_name = "odeint_bulirsch_stoer",
-     .adaptive = true, .physical_time = false, .odeint = true,
-     .not_resumable = "it is Boost.Odeint's stepper, whose state a checkpoint does not hold",
-     .description = "Boost.Odeint bulirsch_stoer, absolute = relative tolerance"},
-    {.kind = method_kind::gauss_2, .label = "gauss", .scene_name = "gauss_2", .requirement = needs::general_hamiltonian,
-     .description = "implicit Gauss-Legendre collocation, s = 1 (the implicit midpoint rule), order 2: symplectic for "
-                    "any H(q, p), separable or not"},
-    {.kind = method_kind::gauss_4, .label = "gauss", .scene_name = "gauss_4", .requirement = needs::general_hamiltonian,
-     .description = "implicit Gauss-Legendre collocation, s = 2, order 4, any H(q, p)"},
-    {.kind = method_kind::gauss_6, .label = "gauss", .scene_name = "gauss_6", .requirement = needs::general_hamiltonian,
-     .description = "implicit Gauss-Legendre collocation, s = 3, order 6, any H(q, p)"},
+    {.kind = method_kind::odeint, .label = "odeint", .members = odeint_members, .odeint = true,
+     .not_resumable = "it is Boost.Odeint's stepper, whose state a checkpoint does not hold"},
+    {.kind = method_kind::gauss, .label = "gauss", .members = gauss_members, .requirement = needs::general_hamiltonian},
     {.kind = method_kind::tao, .label = "tao", .requirement = needs::general_hamiltonian,
      .not_resumable = "it carries a second copy of the state between steps, which a checkpoint does not hold",
      .description = "tao(<table>): Tao's explicit method for any H(q, p) (extended phase space, binding omega = 20), "
@@ -121,27 +138,10 @@ inline constexpr std::array<method_kind_entry, method_kind_count> method_kind_en
     {.kind = method_kind::semiexplicit, .label = "semiexplicit", .requirement = needs::general_hamiltonian,
      .description = "semiexplicit(<table>): Jayawardana & Ohsawa's semiexplicit method for any H(q, p), composed "
                     "by a symmetric composition of leapfrog steps; symplectic and symmetric"},
-    {.kind = method_kind::dprkn6, .label = "rkn_nonsymplectic", .scene_name = "dprkn6",
+    {.kind = method_kind::dprkn, .label = "rkn_nonsymplectic", .members = dprkn_members,
      .requirement = needs::quadratic_kinetic,
-     .description = "not symplectic: Dormand-Prince RKN6(4) pair, fixed step (the order-6 result)"},
-    {.kind = method_kind::dprkn8, .label = "rkn_nonsymplectic", .scene_name = "dprkn8",
-     .requirement = needs::quadratic_kinetic,
-     .description = "not symplectic: Dormand-El-Mikkawy-Prince RKN8(6) pair, fixed step"},
-    {.kind = method_kind::dprkn12, .label = "rkn_nonsymplectic", .scene_name = "dprkn12",
-     .requirement = needs::quadratic_kinetic,
-     .description = "not symplectic: Dormand-El-Mikkawy-Prince RKN12(10) pair, fixed step"},
-    {.kind = method_kind::dprkn6_controlled, .label = "rkn_nonsymplectic", .scene_name = "dprkn6_controlled",
-     .adaptive = true, .physical_time = false, .requirement = needs::quadratic_kinetic,
-     .not_resumable = rkn_controlled_not_resumable,
-     .description = "not symplectic: dprkn6 with its step size controlled, absolute = relative tolerance"},
-    {.kind = method_kind::dprkn8_controlled, .label = "rkn_nonsymplectic", .scene_name = "dprkn8_controlled",
-     .adaptive = true, .physical_time = false, .requirement = needs::quadratic_kinetic,
-     .not_resumable = rkn_controlled_not_resumable,
-     .description = "not symplectic: dprkn8 with its step size controlled, absolute = relative tolerance"},
-    {.kind = method_kind::dprkn12_controlled, .label = "rkn_nonsymplectic", .scene_name = "dprkn12_controlled",
-     .adaptive = true, .physical_time = false, .requirement = needs::quadratic_kinetic,
-     .not_resumable = rkn_controlled_not_resumable,
-     .description = "not symplectic: dprkn12 with its step size controlled, absolute = relative tolerance"},
+     .controlled_not_resumable = "its step-size controller carries the step size and the last error between steps, "
+                                 "which a checkpoint does not hold"},
     {.kind = method_kind::wisdom_holman, .label = "wisdom_holman", .requirement = needs::planetary,
      .not_resumable = "it runs in democratic heliocentric or Jacobi coordinates, which a checkpoint does not hold",
      .description = "wh(<table>[, corrector = K][, kernel = composition|lazy][, coordinates = jacobi]): "
@@ -154,6 +154,11 @@ inline constexpr std::array<method_kind_entry, method_kind_count> method_kind_en
 
 constexpr const method_kind_entry& entry_of(method_kind kind) { return method_kind_entries[std::size_t(kind)]; }
 const std::array<method_kind_entry, method_kind_count>& method_kinds();
+
+// Whether some method of the kind can resume from a checkpoint: the row's
+// answer before any parameter, which decides whether the checkpointed driver
+// is compiled for the kind (run_kinds.hpp).
+constexpr bool kind_may_resume(method_kind kind) { return *entry_of(kind).not_resumable == '\0'; }
 
 // A classic stepper of classic_steppers.hpp under its scene name.
 template <template <class, class> class Stepper, needs Needs>
@@ -200,6 +205,7 @@ struct method_spec {
     int extrapolation_columns = 0;      // extrapolated(<table or logh(table)>, k): k > 0
     bool compensated = false;           // compensated(<table>): Kahan-summed updates
     std::size_t classic = 0;            // for kind == classic: the index in classic_methods
+    method_parameters parameters;       // for a family's member (odeint, gauss, dprkn): its row in members
     // wh(<table>, corrector = K, kernel = composition|lazy, coordinates = jacobi): wisdom_holman_options.
     int corrector_order = 0;            // 0: none
     bool composition_kernel = false;
@@ -207,9 +213,13 @@ struct method_spec {
     bool jacobi = false;                // wh(..., coordinates = jacobi)
 };
 
+// Whether the method is swept over tolerances (its step size controlled)
+// instead of step sizes.
+inline bool adaptive(const method_spec& m) { return m.parameters.control == step_control::controlled; }
+
 // Whether the method's dt is a step in physical time (not a tolerance, and not
 // LogH's fictitious step).
-inline bool steps_in_physical_time(const method_spec& m) { return entry_of(m.kind).physical_time; }
+inline bool steps_in_physical_time(const method_spec& m) { return !adaptive(m) && !entry_of(m.kind).fictitious_time; }
 
 // The names a scene may give beside the catalog's and its own [[table]]s
 // (and logh(<table>)): the classic steppers, the Odeint kinds, the

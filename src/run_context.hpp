@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -34,45 +35,41 @@ std::vector<double> to_vector(const X& x) {
     return {y.begin(), y.end()};
 }
 
-// Whether a system of type Sys meets a requirement: decided by the library's
-// concepts, at compile time; form_of<Sys>() is the registry's copy.
-// (V < 0 and a kinetic energy quadratic in p are properties of the system's
-// values, given by its registry entry; here they stand for "separable".)
-template <needs N, class Sys>
-constexpr bool meets() {
+// What a system of type Sys offers, from the library's concepts. V < 0 and a
+// kinetic energy quadratic in p are properties of the system's values, given
+// by its registry entry (systems.cpp): `possible` takes them as met wherever
+// the type allows, which is what a compile-time choice of the kinds compiled
+// for Sys needs; otherwise V < 0 is left for the entry to say.
+template <class Sys>
+constexpr system_form form_of(bool possible = false) {
     using State = phase_space<double>;
+    using V = State::vector;
     using E = decltype(equations_of<State>(std::declval<Sys>()));
-    if constexpr (N == needs::any) return true;
-    else if constexpr (N == needs::separable_hamiltonian || N == needs::negative_potential ||
-                       N == needs::quadratic_kinetic)
-        return separable_hamiltonian<Sys, State::vector>;
-    else if constexpr (N == needs::general_hamiltonian)
-        return general_hamiltonian<Sys, State::vector> || separable_hamiltonian<Sys, State::vector>;
-    else if constexpr (N == needs::differentiable_force) {
-        if constexpr (separable_hamiltonian<Sys, State::vector>) return differentiable_force<Sys, State::vector>;
+    constexpr bool separable = separable_hamiltonian<Sys, V>;
+    constexpr bool differentiable = [] {
+        if constexpr (separable) return differentiable_force<Sys, V>;
         else return false;
-    } else if constexpr (N == needs::newtonian) return newtonian_form<E>;
-    else if constexpr (N == needs::splitting)
-        return separable_hamiltonian<Sys, State::vector> || conformal_system<Sys, State::vector>;
-    else if constexpr (N == needs::planetary)
-        return requires(const Sys& s) {
-            std::size(s.mass);
-            double(s.mass[0]);
-            double(s.G);
-        };
-    else return damped_newtonian_form<E, State>;
+    }();
+    return {.separable_hamiltonian = separable,
+            .newtonian = newtonian_form<E>,
+            .damped_split = damped_newtonian_form<E, State>,
+            .negative_potential = possible && separable,
+            .differentiable_force = differentiable,
+            .conformal = conformal_system<Sys, V>,
+            .general_hamiltonian = general_hamiltonian<Sys, V> || separable,
+            .quadratic_kinetic = separable,
+            .planetary = requires(const Sys& sys) {
+                std::size(sys.mass);
+                double(sys.mass[0]);
+                double(sys.G);
+            }};
 }
 
-template <class Sys>
-system_form form_of() {
-    return {.separable_hamiltonian = meets<needs::separable_hamiltonian, Sys>(),
-            .newtonian = meets<needs::newtonian, Sys>(),
-            .damped_split = meets<needs::damped_split, Sys>(),
-            .differentiable_force = meets<needs::differentiable_force, Sys>(),
-            .conformal = conformal_system<Sys, phase_space<double>::vector>,
-            .general_hamiltonian = meets<needs::general_hamiltonian, Sys>(),
-            .quadratic_kinetic = meets<needs::quadratic_kinetic, Sys>(),
-            .planetary = meets<needs::planetary, Sys>()};
+// Whether a system of type Sys can meet a requirement: the requirement's row
+// (requirements.hpp) asked at compile time of the type's form.
+template <needs N, class Sys>
+constexpr bool meets() {
+    return *requirement_row(N).why_not(form_of<Sys>(true)) == '\0';
 }
 
 template <class Sys>
@@ -119,9 +116,9 @@ struct run_context {
     Observer& observe;
 
     // Any sympl stepper over the span; checkpointed when the request asks.
-    // Steppers a checkpoint cannot resume (Resumable false: extrapolated,
-    // processed, classic with history) are refused by the scene before they
-    // get here, and their checkpointed driver is not compiled.
+    // Methods a checkpoint cannot resume were refused before (run_method reads
+    // their row); Resumable false, the row's answer for the kind (or a classic
+    // stepper's history), leaves the checkpointed driver uncompiled.
     template <bool Resumable = true, class Stepper>
     steps_and_forces drive(Stepper stepper) const {
         run_summary s;
@@ -130,13 +127,23 @@ struct run_context {
                 if constexpr (Resumable)
                     return checkpointed(*this, stepper);
                 else
-                    throw invalid_argument(why_not_resumable(m));
+                    throw std::logic_error("method '" + m.name + "': a checkpointed run its row refuses reached the driver");
             }
             s = integrate_until(stepper, x, t0, t_end, rq.dt, observe);
         } else {
             s = integrate_until(stepper, x, t0, t_end, rq.dt);
         }
         return {s.steps, s.force_evaluations};
+    }
+};
+
+// A run context for kind K: its drive compiles the checkpointed driver only
+// where the kind's row allows a resumable method.
+template <method_kind K, class Context>
+struct kind_context : Context {
+    template <bool Resumable = true, class Stepper>
+    steps_and_forces drive(Stepper stepper) const {
+        return Context::template drive<Resumable && kind_may_resume(K)>(std::move(stepper));
     }
 };
 

@@ -1,5 +1,5 @@
 #pragma once
-// The kinds for any Hamiltonian H(q, p), separable or not (run_kind<gauss_*>,
+// The kinds for any Hamiltonian H(q, p), separable or not (run_kind<gauss>,
 // <tao>, <semiexplicit>): the implicit Gauss-Legendre collocation
 // (gauss_collocation.hpp) and the two extended-phase-space methods
 // (extended_phase_space.hpp), composed by the method's table. A separable
@@ -20,22 +20,16 @@ auto as_general(const Sys& sys) {
         return separable_as_general<Sys>{sys};
 }
 
-// Gauss-Legendre with `Stages` stages, order 2 Stages: nothing is carried
+// Gauss-Legendre with the member's stages s, order 2s: nothing is carried
 // between steps, so a checkpoint resumes it bit for bit.
-template <int Stages>
-struct gauss_run {
+template <>
+struct run_kind<method_kind::gauss> {
     template <class C>
     static steps_and_forces run(const C& c) {
-        return c.drive(gauss_collocation_stepper<typename C::system, typename C::State>(c.sys, Stages));
+        return c.drive(
+            gauss_collocation_stepper<typename C::system, typename C::State>(c.sys, c.m.parameters.stages));
     }
 };
-
-template <>
-struct run_kind<method_kind::gauss_2> : gauss_run<1> {};
-template <>
-struct run_kind<method_kind::gauss_4> : gauss_run<2> {};
-template <>
-struct run_kind<method_kind::gauss_6> : gauss_run<3> {};
 
 // Tao (2016): its second copy is carried from step to step (not resumable).
 template <>
@@ -43,7 +37,7 @@ struct run_kind<method_kind::tao> {
     template <class C>
     static steps_and_forces run(const C& c) {
         auto h = as_general(c.sys);
-        return c.template drive<false>(tao_stepper<decltype(h), typename C::State>(std::move(h), *c.m.coefficients));
+        return c.drive(tao_stepper<decltype(h), typename C::State>(std::move(h), *c.m.coefficients));
     }
 };
 

@@ -8,6 +8,7 @@
 // run_odeint.hpp, those for any H(q, p) in run_general.hpp, the RKN pairs in
 // run_rkn.hpp, what all kinds share in run_context.hpp.
 #include <cstddef>
+#include <string>
 #include <utility>
 
 #include "run_context.hpp"
@@ -28,8 +29,10 @@ struct run_kind<method_kind::table> {
         using Sys = typename C::system;
         if constexpr (separable_hamiltonian<Sys, typename C::State::vector>) {
             splitting_stepper<Sys, typename C::State> stepper(c.sys, *c.m.coefficients, {c.m.compensated});
+            constexpr bool extrapolated_resumable = !*entry_of(method_kind::table).extrapolated_not_resumable;
             if (c.m.extrapolation_columns > 0)
-                return c.template drive<false>(extrapolation_stepper(std::move(stepper), c.m.extrapolation_columns));
+                return c.template drive<extrapolated_resumable>(
+                    extrapolation_stepper(std::move(stepper), c.m.extrapolation_columns));
             return c.drive(std::move(stepper));
         } else {
             return c.drive(conformal_stepper<Sys, typename C::State>(c.sys, *c.m.coefficients));
@@ -41,7 +44,7 @@ template <>
 struct run_kind<method_kind::processed> {
     template <class C>
     static steps_and_forces run(const C& c) {
-        return c.template drive<false>(processed_stepper<typename C::system, typename C::State>(c.sys, *c.m.processing));
+        return c.drive(processed_stepper<typename C::system, typename C::State>(c.sys, *c.m.processing));
     }
 };
 
@@ -92,7 +95,7 @@ struct run_kind<method_kind::classic> {
     template <std::size_t I, class C>
     static steps_and_forces one(const C& c) {
         constexpr auto& method = std::get<I>(classic_methods);
-        return with_stepper<!method.history>(method, c);
+        return with_stepper<!method.history || !*entry_of(method_kind::classic).history_not_resumable>(method, c);
     }
 
     template <bool Resumable, template <class, class> class Stepper, needs N, class C>
@@ -104,16 +107,11 @@ struct run_kind<method_kind::classic> {
     }
 };
 
-// Whether Sys meets `n`, asked at run time of the compile-time answers.
+// Whether Sys can meet `n`: the requirement's row asked of the type's form.
 template <class Sys>
 bool meets_at_run_time(needs n) {
-    constexpr std::array answers{meets<needs::any, Sys>(),          meets<needs::separable_hamiltonian, Sys>(),
-                                 meets<needs::newtonian, Sys>(),    meets<needs::damped_split, Sys>(),
-                                 meets<needs::negative_potential, Sys>(), meets<needs::differentiable_force, Sys>(),
-                                 meets<needs::splitting, Sys>(),    meets<needs::general_hamiltonian, Sys>(),
-                                 meets<needs::quadratic_kinetic, Sys>(),    meets<needs::planetary, Sys>()};
-    static_assert(answers.size() == std::size_t(needs::planetary) + 1);
-    return answers[std::size_t(n)];
+    static constexpr system_form form = form_of<Sys>(true);
+    return *requirement_row(n).why_not(form) == '\0';
 }
 
 // The kind's run where the system type meets the kind's requirement; the
@@ -122,16 +120,19 @@ bool meets_at_run_time(needs n) {
 template <method_kind K, class C>
 steps_and_forces run_where_met(const C& c) {
     if constexpr (meets<entry_of(K).requirement, typename C::system>())
-        return run_kind<K>::run(c);
+        return run_kind<K>::run(kind_context<K, C>{c});
     else
         refuse<typename C::system>(c.m.name, entry_of(K).requirement);
 }
 
-// The one dispatch: a method's kind to its run.
+// The one dispatch: a method's kind to its run. A checkpointed run of a
+// method its row says cannot resume is refused here, with the row's reason.
 template <class C>
 steps_and_forces run_method(const C& c) {
     if (const needs n = requirement_of(c.m); !meets_at_run_time<typename C::system>(n))
         refuse<typename C::system>(c.m.name, n);
+    if (C::observed && c.rq.checkpoint.every_steps)
+        if (const std::string why = why_not_resumable(c.m); !why.empty()) throw invalid_argument(why);
     return [&]<std::size_t... K>(std::index_sequence<K...>) {
         steps_and_forces done{};
         ((std::size_t(c.m.kind) == K ? void(done = run_where_met<method_kind(K)>(c)) : void()), ...);

@@ -1,10 +1,12 @@
 #pragma once
-// The Boost.Odeint kinds' runs (run_kind<odeint_*>): the report's competitors.
+// The Boost.Odeint kind's run (run_kind<odeint>): the report's competitors.
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <type_traits>
 #include <utility>
 
+#include <boost/numeric/odeint/integrate/integrate_adaptive.hpp>
 #include <sympl/interop/odeint.hpp>
 
 #include "run_context.hpp"
@@ -35,10 +37,16 @@ odeint_state<Dim> to_odeint(const state_of<Dim>& x) {
 }
 
 // Boost.Odeint's steppers on the library's bridge (odeint.hpp), whose
-// workspace keeps the evaluations free of allocation and counts them. The
-// observer reaches them type-erased (nullptr: not observed), so each Odeint
-// stepper is compiled once per system, not once per observer; a call per
-// step costs nothing next to an Odeint step.
+// workspace keeps the evaluations free of allocation and counts them, driven
+// by Odeint's own integrate_adaptive: for runge_kutta4 its constant steps and
+// a last one to end at t_end, for the controlled steppers its loop of
+// try_step. Odeint's driver has no stop of its own for a blow-up or a step
+// that stopped making progress, so its observer (called at t0 and after each
+// step) checks them and throws, which ends integrate_adaptive; Odeint's own
+// stop, 500 rejected step sizes in a row, is reported in the same words. The
+// program's observer reaches the run type-erased (nullptr: not observed), so
+// each Odeint stepper is compiled once per system, not once per observer; a
+// call per step costs nothing next to an Odeint step.
 template <class Sys, int Dim>
 struct odeint_run {
     using State = state_of<Dim>;
@@ -50,57 +58,66 @@ struct odeint_run {
     State& x;
     const std::function<void(const State&, double)>* observe;
 
-    static void check_finite(const OdeState& y, std::size_t step, double t, double h) {
-        for (double v : y)
-            if (!std::isfinite(v)) throw blow_up(step, t, h);
+    // What integrate_adaptive's observer has seen: the accepted steps and the
+    // time the last one ended at.
+    struct progress {
+        bool started = false;
+        std::size_t steps = 0;
+        double t = 0;
+    };
+
+    // integrate_adaptive calls the observer at t0, then once after each
+    // accepted step: a non-finite state names its step, the time the step
+    // started from and its size (blow_up, as sympl's drivers say it); a step
+    // of 1e-14 of the span or less, short of t_end, is one the run would
+    // never finish with; then the program's observer sees the state.
+    auto checking_observer(progress& at) const {
+        return [this, &at](const OdeState& y, double t) {
+            if (!std::exchange(at.started, true)) {
+                if (observe) (*observe)(std::as_const(x), t0);
+                return;
+            }
+            const double h = t - at.t;
+            const std::size_t step = at.steps + 1;
+            for (double v : y)
+                if (!std::isfinite(v)) throw blow_up(step, at.t, h);
+            if (!(h > 1e-14 * (t_end - t0)) && t < t_end)
+                throw integration_error(m.name + ": step " + std::to_string(step) + " from t = " +
+                                            format_number(at.t, 17) + " was dt = " + format_number(h, 3) +
+                                            "; expected a step above 1e-14 of the span (Boost.Odeint's step size "
+                                            "collapsed)",
+                                        step, at.t);
+            at.steps = step;
+            at.t = t;
+            if (observe) (*observe)(to_state<Dim>(y), t);
+        };
     }
 
-    steps_and_forces fixed_step() const {
+    template <class Stepper>
+    steps_and_forces run(Stepper stepper, double dt) const {
         odeint_workspace<double, Dim> w;
         const auto f = make_odeint_system<Dim>(sys, &w);
         OdeState y = to_odeint<Dim>(x);
-        odeint::runge_kutta4<OdeState> rk4;
-        const double dt = rq.dt, span = t_end - t0;
-        const auto n = static_cast<std::size_t>(std::floor(span / dt));
-        double rest = span - double(n) * dt;
-        if (rest <= 8 * std::numeric_limits<double>::epsilon() * span) rest = 0;
-        if (observe) (*observe)(std::as_const(x), t0);  // as sympl's driver: t0 first
-        const std::size_t total = n + (rest > 0 ? 1 : 0);
-        for (std::size_t i = 0; i < total; ++i) {
-            const double t = t0 + double(i) * dt, h = i < n ? dt : rest;
-            rk4.do_step(f, y, t, h);
-            if (observe) {
-                check_finite(y, i + 1, t, h);
-                (*observe)(to_state<Dim>(y), t + h);
-            }
+        // Unobserved at a fixed step, only the final state is checked (the
+        // timed runs see Odeint's loop as a user's would).
+        constexpr bool controlled =
+            std::is_same_v<typename Stepper::stepper_category, odeint::controlled_stepper_tag>;
+        const bool every_step = controlled || observe;
+        progress at{.t = t0};
+        std::size_t steps = 0;
+        try {
+            if constexpr (!controlled)
+                if (!every_step) steps = odeint::integrate_adaptive(stepper, f, y, t0, t_end, dt);
+            if (every_step) steps = odeint::integrate_adaptive(stepper, f, y, t0, t_end, dt, checking_observer(at));
+        } catch (const odeint::step_adjustment_error&) {
+            throw integration_error(m.name + ": Boost.Odeint rejected 500 step sizes in a row from t = " +
+                                        format_number(at.t, 17) + " (tolerance " + format_number(rq.tolerance, 3) +
+                                        "); expected a step size its error estimate accepts",
+                                    at.steps + 1, at.t);
         }
-        if (!observe) check_finite(y, total, t_end, dt);
-        x = to_state<Dim>(y);
-        return {total, w.evaluations};
-    }
-
-    // Any Odeint controlled stepper (try_step), from t0 to exactly t_end.
-    template <class Controlled>
-    steps_and_forces controlled(Controlled stepper) const {
-        odeint_workspace<double, Dim> w;
-        const auto f = make_odeint_system<Dim>(sys, &w);
-        OdeState y = to_odeint<Dim>(x);
-        double t = t0, h = (t_end - t0) / 1000;
-        std::size_t steps = 0, failed = 0;
-        if (observe) (*observe)(std::as_const(x), t0);
-        while (t < t_end) {
-            if (t + h > t_end) h = t_end - t;
-            if (!(h > 1e-14 * (t_end - t0)) || t + h == t || ++failed > 500)
-                throw integration_error(m.name + ": step size underflow at t = " + format_number(t, 17) + " (dt = " +
-                                            format_number(h, 3) + ")",
-                                        steps + 1, t);
-            if (stepper.try_step(f, y, t, h) == odeint::success) {
-                ++steps;
-                failed = 0;
-                check_finite(y, steps, t, h);
-                if (observe) (*observe)(to_state<Dim>(y), t);
-            }
-        }
+        if (!every_step)
+            for (double v : y)
+                if (!std::isfinite(v)) throw blow_up(steps, t_end, dt);
         x = to_state<Dim>(y);
         return {steps, w.evaluations};
     }
@@ -115,56 +132,29 @@ steps_and_forces with_odeint(const C& c, Run run) {
     return run(R{c.sys, c.m, c.rq, c.t0, c.t_end, c.x, C::observed ? &observe : nullptr});
 }
 
-// One instantiation per system for each Odeint kind, whatever the observer.
+// One instantiation per system, whatever the observer: the member's stepper,
+// a fixed step dt, or controlled to the tolerance (absolute = relative) from
+// a first step of a thousandth of the span.
 template <class Sys, int Dim>
-steps_and_forces odeint_rk4_run(const odeint_run<Sys, Dim>& r) {
-    return r.fixed_step();
-}
-template <class Sys, int Dim>
-steps_and_forces odeint_dopri5_run(const odeint_run<Sys, Dim>& r) {
+steps_and_forces odeint_stepper_run(const odeint_run<Sys, Dim>& r) {
     using OdeState = odeint_state<Dim>;
-    return r.controlled(odeint::make_controlled(r.rq.tolerance, r.rq.tolerance, odeint::runge_kutta_dopri5<OdeState>()));
-}
-template <class Sys, int Dim>
-steps_and_forces odeint_fehlberg78_run(const odeint_run<Sys, Dim>& r) {
-    using OdeState = odeint_state<Dim>;
-    return r.controlled(
-        odeint::make_controlled(r.rq.tolerance, r.rq.tolerance, odeint::runge_kutta_fehlberg78<OdeState>()));
-}
-template <class Sys, int Dim>
-steps_and_forces odeint_bulirsch_stoer_run(const odeint_run<Sys, Dim>& r) {
-    return r.controlled(odeint::bulirsch_stoer<odeint_state<Dim>>(r.rq.tolerance, r.rq.tolerance));
-}
-
-template <>
-struct run_kind<method_kind::odeint_rk4> {
-    template <class C>
-    static steps_and_forces run(const C& c) {
-        return with_odeint(c, odeint_rk4_run<typename C::system, C::dimension>);
+    const double tol = r.rq.tolerance, first = (r.t_end - r.t0) / 1000;
+    switch (r.m.parameters.stepper) {
+        case odeint_stepper::rk4: return r.run(odeint::runge_kutta4<OdeState>(), r.rq.dt);
+        case odeint_stepper::dopri5:
+            return r.run(odeint::make_controlled(tol, tol, odeint::runge_kutta_dopri5<OdeState>()), first);
+        case odeint_stepper::fehlberg78:
+            return r.run(odeint::make_controlled(tol, tol, odeint::runge_kutta_fehlberg78<OdeState>()), first);
+        case odeint_stepper::bulirsch_stoer: return r.run(odeint::bulirsch_stoer<OdeState>(tol, tol), first);
     }
-};
+    throw invalid_argument("method '" + r.m.name + "': no such Boost.Odeint stepper");
+}
 
 template <>
-struct run_kind<method_kind::odeint_dopri5> {
+struct run_kind<method_kind::odeint> {
     template <class C>
     static steps_and_forces run(const C& c) {
-        return with_odeint(c, odeint_dopri5_run<typename C::system, C::dimension>);
-    }
-};
-
-template <>
-struct run_kind<method_kind::odeint_fehlberg78> {
-    template <class C>
-    static steps_and_forces run(const C& c) {
-        return with_odeint(c, odeint_fehlberg78_run<typename C::system, C::dimension>);
-    }
-};
-
-template <>
-struct run_kind<method_kind::odeint_bulirsch_stoer> {
-    template <class C>
-    static steps_and_forces run(const C& c) {
-        return with_odeint(c, odeint_bulirsch_stoer_run<typename C::system, C::dimension>);
+        return with_odeint(c, odeint_stepper_run<typename C::system, C::dimension>);
     }
 };
 

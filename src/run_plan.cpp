@@ -21,7 +21,7 @@ std::size_t run_plan::sweep_length(const scene_method& m) const {
 }
 
 const std::vector<double>& sweep_of(const scene& s, const scene_method& m) {
-    if (entry_of(m.kind).adaptive) return m.tolerances.empty() ? s.tolerances : m.tolerances;
+    if (adaptive(m)) return m.tolerances.empty() ? s.tolerances : m.tolerances;
     return m.dt.empty() ? s.dt : m.dt;
 }
 
@@ -32,13 +32,13 @@ run_plan plan_runs(const scene& s, const problem& p, sweep_use use) {
     for (const scene_method& m : s.methods) {
         const auto& sweep = sweep_of(s, m);
         const std::size_t count = use == sweep_use::whole ? sweep.size() : 1;
-        const bool adaptive = entry_of(m.kind).adaptive, physical = steps_in_physical_time(m);
+        const bool controlled = adaptive(m), physical = steps_in_physical_time(m);
         // extrapolated(<table>, k) runs 1 + 2 + ... + k steps per step.
         const double inner = m.extrapolation_columns > 0
                                  ? double(m.extrapolation_columns) * double(m.extrapolation_columns + 1) / 2
                                  : 1.0;
         for (std::size_t i = 0; i < count; ++i) {
-            planned_run r{.method = &m, .dt = adaptive ? 0.0 : sweep[i], .tolerance = adaptive ? sweep[i] : 0.0};
+            planned_run r{.method = &m, .dt = controlled ? 0.0 : sweep[i], .tolerance = controlled ? sweep[i] : 0.0};
             if (physical) {
                 r.steps = std::ceil(span / sweep[i]) * inner;
                 finest = std::min(finest, sweep[i]);

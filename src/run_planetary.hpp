@@ -14,7 +14,7 @@ template <>
 struct run_kind<method_kind::wisdom_holman> {
     template <class C>
     static steps_and_forces run(const C& c) {
-        return c.template drive<false>(
+        return c.drive(
             make_wisdom_holman<typename C::State>(c.sys, *c.m.coefficients, wisdom_holman_options_of(c.m)));
     }
 };

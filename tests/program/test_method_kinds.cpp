@@ -3,10 +3,12 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <sympl/methods/catalog.hpp>
 
+#include "checkpoint.hpp"
 #include "method_kinds.hpp"
 #include "systems.hpp"
 
@@ -16,8 +18,8 @@ using namespace sympl::app;
 
 TEST_CASE("method kinds: a name resolves to its kind, a scene's table comes first") {
     CHECK(resolve_method("rk4", {})->kind == method_kind::classic);
-    CHECK(resolve_method("odeint_rk4", {})->kind == method_kind::odeint_rk4);
-    CHECK(resolve_method("odeint_dopri5", {})->kind == method_kind::odeint_dopri5);
+    CHECK(resolve_method("odeint_rk4", {})->kind == method_kind::odeint);
+    CHECK(resolve_method("odeint_dopri5", {})->kind == method_kind::odeint);
     const auto table = resolve_method("yoshida_6", {});
     REQUIRE(table);
     CHECK(table->kind == method_kind::table);
@@ -25,8 +27,125 @@ TEST_CASE("method kinds: a name resolves to its kind, a scene's table comes firs
     CHECK_FALSE(resolve_method("rk5", {}));
     for (const auto& name : sympl::catalog_names()) CHECK(resolve_method(name, {}));
     for (const auto& name : method_names_beside_tables()) CHECK(resolve_method(name, {}));
-    CHECK(entry_of(method_kind::odeint_dopri5).adaptive);
-    CHECK_FALSE(entry_of(method_kind::odeint_rk4).adaptive);
+    CHECK(adaptive(*resolve_method("odeint_dopri5", {})));
+    CHECK_FALSE(adaptive(*resolve_method("odeint_rk4", {})));
+}
+
+// The names scenes gave when each was a kind of its own (before issue 37):
+// each still resolves to the same method, now a family's kind and its
+// parameters, with the same label and the same sweep (step sizes or
+// tolerances).
+TEST_CASE("method kinds: every family member's scene name resolves to its kind, parameters and label") {
+    using enum step_control;
+    struct expected {
+        const char* name;
+        method_kind kind;
+        method_parameters parameters;
+        const char* label;
+    };
+    const std::vector<expected> all{
+        {"odeint_rk4", method_kind::odeint, {.stepper = odeint_stepper::rk4}, "odeint"},
+        {"odeint_dopri5", method_kind::odeint, {.control = controlled, .stepper = odeint_stepper::dopri5}, "odeint"},
+        {"odeint_fehlberg78", method_kind::odeint, {.control = controlled, .stepper = odeint_stepper::fehlberg78},
+         "odeint"},
+        {"odeint_bulirsch_stoer", method_kind::odeint,
+         {.control = controlled, .stepper = odeint_stepper::bulirsch_stoer}, "odeint"},
+        {"gauss_2", method_kind::gauss, {.stages = 1}, "gauss"},
+        {"gauss_4", method_kind::gauss, {.stages = 2}, "gauss"},
+        {"gauss_6", method_kind::gauss, {.stages = 3}, "gauss"},
+        {"dprkn6", method_kind::dprkn, {.pair = rkn_pair::dprkn6}, "rkn_nonsymplectic"},
+        {"dprkn8", method_kind::dprkn, {.pair = rkn_pair::dprkn8}, "rkn_nonsymplectic"},
+        {"dprkn12", method_kind::dprkn, {.pair = rkn_pair::dprkn12}, "rkn_nonsymplectic"},
+        {"dprkn6_controlled", method_kind::dprkn, {.control = controlled, .pair = rkn_pair::dprkn6}, "rkn_nonsymplectic"},
+        {"dprkn8_controlled", method_kind::dprkn, {.control = controlled, .pair = rkn_pair::dprkn8}, "rkn_nonsymplectic"},
+        {"dprkn12_controlled", method_kind::dprkn, {.control = controlled, .pair = rkn_pair::dprkn12},
+         "rkn_nonsymplectic"},
+    };
+    std::size_t members = 0;
+    for (const method_kind_entry& row : method_kinds()) members += row.members.size();
+    CHECK(members == all.size());  // no member is missing from the list above
+    for (const expected& e : all) {
+        CAPTURE(e.name);
+        const auto m = resolve_method(e.name, {});
+        REQUIRE(m);
+        CHECK(m->name == e.name);
+        CHECK(m->kind == e.kind);
+        CHECK(m->parameters == e.parameters);
+        CHECK(std::string(entry_of(m->kind).label) == e.label);
+        CHECK(adaptive(*m) == (e.parameters.control == controlled));
+        CHECK(steps_in_physical_time(*m) == !adaptive(*m));
+    }
+    CHECK(method_kind_count <= 12);
+    // The pattern-named kinds keep their parameters at the defaults.
+    for (const char* name : {"leapfrog_kdk", "rk4", "tao(leapfrog_kdk)", "wh(leapfrog_kdk)", "bcm_2006_p8"})
+        CHECK(resolve_method(name, {})->parameters == method_parameters{});
+    CHECK_FALSE(steps_in_physical_time(*resolve_method("logh(leapfrog_kdk)", {})));
+}
+
+// Whether a method can resume is its row's answer, and the run reads it there:
+// a checkpointed run of a method whose row says it cannot is refused with the
+// row's reason before it steps; the others run and save checkpoints.
+TEST_CASE("method kinds: resumability comes from the registry row, and a refused run gives the row's reason") {
+    for (const method_kind_entry& row : method_kinds()) {
+        CAPTURE(row.label);
+        CHECK(kind_may_resume(row.kind) == !*row.not_resumable);
+        for (const named_method& member : row.members) {
+            const std::string why = why_not_resumable(*resolve_method(member.name, {}));
+            const char* reason = *row.not_resumable                                   ? row.not_resumable
+                                 : member.parameters.control == step_control::controlled ? row.controlled_not_resumable
+                                                                                       : "";
+            CHECK(why == (*reason ? "method '" + std::string(member.name) + "' cannot be checkpointed: " + reason : ""));
+        }
+    }
+    const problem pendulum = make_problem("pendulum", {}, {}, {}, "test");
+    const auto checkpointed_run = [&](const problem& p, const std::string& name) {
+        run_request rq;
+        rq.dt = 1e-2;
+        rq.tolerance = 1e-8;
+        rq.timing_repeats = 0;
+        rq.checkpoint.every_steps = 3;
+        std::size_t saved = 0;
+        rq.checkpoint.save = [&](checkpoint_record&) { ++saved; };
+        const run_result r = p.run(*resolve_method(name, {}), rq, 0.0, 0.1, p.x0);
+        CHECK(r.stable);
+        return saved;
+    };
+    const auto refused_with = [&](const problem& p, const std::string& name, const char* reason) {
+        CAPTURE(name);
+        CHECK_THROWS_WITH_AS(checkpointed_run(p, name), doctest::Contains(reason), sympl::invalid_argument);
+    };
+    refused_with(pendulum, "bcm_2006_p8", entry_of(method_kind::processed).not_resumable);
+    refused_with(pendulum, "tao(leapfrog_kdk)", entry_of(method_kind::tao).not_resumable);
+    refused_with(pendulum, "odeint_rk4", entry_of(method_kind::odeint).not_resumable);
+    refused_with(pendulum, "odeint_dopri5", entry_of(method_kind::odeint).not_resumable);
+    refused_with(pendulum, "dprkn8_controlled", entry_of(method_kind::dprkn).controlled_not_resumable);
+    refused_with(pendulum, "extrapolated(leapfrog_kdk, 2)", entry_of(method_kind::table).extrapolated_not_resumable);
+    refused_with(pendulum, "velocity_verlet", entry_of(method_kind::classic).history_not_resumable);
+    refused_with(make_problem("outer_solar_system", {}, {}, {}, "test"), "wh(leapfrog_kdk)",
+                 entry_of(method_kind::wisdom_holman).not_resumable);
+    for (const char* name : {"leapfrog_kdk", "chin_4a", "rk4", "gauss_4", "dprkn8", "semiexplicit(leapfrog_kdk)"}) {
+        CAPTURE(name);
+        CHECK(checkpointed_run(pendulum, name) == 3);  // after steps 3, 6 and 9 of 10
+    }
+}
+
+// Odeint's integrate_adaptive drives the Odeint kinds; its observer stops a
+// non-finite state with the message sympl's drivers give: the step, the time
+// it started from and its size (dopri5's first step is a thousandth of the span).
+TEST_CASE("method kinds: an Odeint run that blows up says at which step, from where and with what step") {
+    const problem p = make_problem("harmonic_oscillator", {}, {}, {}, "test");
+    run_request rq;
+    rq.dt = 1e100;
+    rq.tolerance = 1e-9;
+    rq.timing_repeats = 0;
+    for (const auto& [name, says] : {std::pair{"odeint_rk4", "step 1 (from t = 0 with dt = 1e+100) produced a non-finite"},
+                                     std::pair{"odeint_dopri5", "step 1 (from t = 0 with dt = 1e+98) produced a non-finite"}}) {
+        CAPTURE(name);
+        const run_result r = p.run(*resolve_method(name, {}), rq, 0.0, 1e101, p.x0);
+        CHECK_FALSE(r.stable);
+        CHECK(r.blowup_step == 1);
+        CHECK(r.failure.find(says) != std::string::npos);
+    }
 }
 
 TEST_CASE("method kinds: force-gradient tables and processed methods by name, and what they refuse") {
@@ -133,11 +252,11 @@ TEST_CASE("method kinds: Gauss-Legendre, tao(<table>), semiexplicit(<table>) and
     CHECK_THROWS_WITH_AS(resolve_method("tao(rk4)", {}), doctest::Contains("'rk4' is not a table"), sympl::invalid_argument);
     CHECK_THROWS_WITH_AS(resolve_method("tao(chin_4a)", {}), doctest::Contains("force-gradient"), sympl::invalid_argument);
     for (const char* name : {"dprkn6", "dprkn8", "dprkn12"}) {
-        CHECK_FALSE(entry_of(resolve_method(name, {})->kind).adaptive);
+        CHECK_FALSE(adaptive(*resolve_method(name, {})));
         CHECK(why_not_resumable(*resolve_method(name, {})).empty());
         const auto controlled = resolve_method(std::string(name) + "_controlled", {});
         REQUIRE(controlled);
-        CHECK(entry_of(controlled->kind).adaptive);
+        CHECK(adaptive(*controlled));
         CHECK(std::string(entry_of(controlled->kind).label) == "rkn_nonsymplectic");
         CHECK(why_not_resumable(*controlled).find("step size") != std::string::npos);
     }

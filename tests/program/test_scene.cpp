@@ -48,7 +48,8 @@ TEST_CASE("scene: a valid scene with a sweep, an inline table and outputs") {
     CHECK(s.methods[1].kind == method_kind::table);
     CHECK(s.methods[1].coefficients->stages() >= 1);
     CHECK(s.methods[2].kind == method_kind::classic);
-    CHECK(s.methods[3].kind == method_kind::odeint_dopri5);
+    CHECK(s.methods[3].kind == method_kind::odeint);
+    CHECK(s.methods[3].parameters.stepper == odeint_stepper::dopri5);
     REQUIRE(s.dt.size() == 3);
     CHECK(s.dt[0] == doctest::Approx(0.1));
     CHECK(s.dt[1] == doctest::Approx(0.01));
