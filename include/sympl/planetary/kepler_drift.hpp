@@ -62,7 +62,7 @@ void check_kepler_input(const S* r, const S* v, S gm, S h, std::ptrdiff_t body) 
 // r and v carried by the f and g functions of the solved G's (kepler_equation.hpp).
 template <class S>
 void drift_by_f_and_g(S* r, S* v, S r0, S eta0, S gm, S g1, S g2, S rr) {
-    apply_f_and_g(f_and_g_at(r0, eta0, gm, g1, g2, 1 / r0, 1 / rr), r[0], r[1], r[2], v[0], v[1], v[2]);
+    apply_f_and_g(f_and_g_at(r0, eta0, gm, g1, g2, rr), r[0], r[1], r[2], v[0], v[1], v[2]);
 }
 
 template <class S>

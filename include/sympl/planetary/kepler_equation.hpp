@@ -101,16 +101,22 @@ S series_start(S u, S A, S B, S w) {
 }
 
 // f - 1, g, fdot and gdot - 1 from the solved G's (Danby 1988, eq.
-// 6.9.20-6.9.22), with 1/r0 and 1/r at hand; applied as increments, so that a
-// short drift adds a small change to r0 and v0. Any scalar T.
+// 6.9.20-6.9.22), any scalar T; applied as increments (apply_f_and_g), so
+// that a short drift adds a small change to r0 and v0.
 template <class T>
 struct f_and_g {
     T fm1, g, fdot, gdm1;
 };
 
-template <class T, class R, class E, class G, class P>
-f_and_g<T> f_and_g_at(const R& r0, const E& eta0, const G& gm, const T& g1, const T& g2, const P& per_r0,
-                      const T& per_r) {
+template <class T, class R, class E, class G>
+f_and_g<T> f_and_g_at(const R& r0, const E& eta0, const G& gm, const T& g1, const T& g2, const T& r) {
+    return {-gm * g2 / r0, r0 * g1 + eta0 * g2, -gm * g1 / (r * r0), -gm * g2 / r};
+}
+
+// The same with 1/r0 and 1/r at hand (the short-drift lanes: products in
+// place of the divisions, the last bit not always the same).
+template <class T>
+f_and_g<T> f_and_g_by_reciprocals(T r0, T eta0, T gm, T g1, T g2, T per_r0, T per_r) {
     return {-gm * g2 * per_r0, r0 * g1 + eta0 * g2, -gm * g1 * per_r * per_r0, -gm * g2 * per_r};
 }
 

@@ -149,7 +149,8 @@ void short_drift_lanes(lane_bodies<S, W>& b, S h, bool (&done)[W]) {
     for (int l = 0; l < W; ++l) per_rn[l] = 1 / w.r[l];
     // f and g into every lane: the caller takes the done ones.
     for (int l = 0; l < W; ++l)
-        apply_f_and_g(f_and_g_at(w.r0[l], w.eta0[l], b.gm[l], w.g1[l], w.g2[l], w.per_r0[l], per_rn[l]), b.x[l],
+        apply_f_and_g(f_and_g_by_reciprocals(w.r0[l], w.eta0[l], b.gm[l], w.g1[l], w.g2[l], w.per_r0[l], per_rn[l]),
+                      b.x[l],
                       b.y[l], b.z[l], b.vx[l], b.vy[l], b.vz[l]);
     // Done: solve_universal's test passed at s + d, and the results are finite (|v| <= max, which a NaN fails).
     for (int l = 0; l < W; ++l) {

@@ -62,7 +62,7 @@ void kepler_drift_tangent(const S* r, const S* v, S* dr, S* dv, S gm, S h) {
     const detail::kepler_terms<D> k = detail::kepler_equation(r0, eta0, zeta0, beta, gm, hd, s, c);
     const D ds = -k.f / k.r;  // its derivative part is the root's change
     const D g1 = k.g1 + c.c0 * ds, g2 = k.g2 + k.g1 * ds, r1 = k.r + k.dr * ds;
-    const detail::f_and_g<D> fg = detail::f_and_g_at(r0, eta0, gm, g1, g2, 1 / r0, 1 / r1);
+    const detail::f_and_g<D> fg = detail::f_and_g_at(r0, eta0, gm, g1, g2, r1);
     detail::apply_f_and_g(fg, R[0], R[1], R[2], V[0], V[1], V[2]);
     for (int i = 0; i < 3; ++i) dr[i] = R[i].grad[0], dv[i] = V[i].grad[0];
 }
