@@ -31,9 +31,9 @@ S nbody_energy(std::span<const double> mass, double G, const phase_space<S, D>& 
         kinetic += x.p.template segment<3>(Eigen::Index(3 * i)).squaredNorm() / (2 * mass[i]);
     for (std::size_t i = 0; i < n; ++i)
         for (std::size_t j = i + 1; j < n; ++j)
-            potential -= G * mass[i] * mass[j] /
-                         sqrt((x.q.template segment<3>(Eigen::Index(3 * i)) - x.q.template segment<3>(Eigen::Index(3 * j)))
-                                  .squaredNorm());
+            potential -= G * mass[i] * mass[j] / sqrt((x.q.template segment<3>(Eigen::Index(3 * i)) -
+                                                       x.q.template segment<3>(Eigen::Index(3 * j)))
+                                                          .squaredNorm());
     return kinetic + potential;
 }
 

@@ -139,10 +139,12 @@ private:
         if (!(std::isfinite(G_) && G_ > 0))
             throw invalid_argument(who + ": G = " + detail::number_text(G_) + "; expected a finite G > 0");
         if (State::dimension != Eigen::Dynamic && std::size_t(State::dimension) != 3 * mass_.size())
-            throw invalid_argument(who + ": " + std::to_string(mass_.size()) + " masses for a state of fixed dimension " +
-                                   std::to_string(State::dimension) + "; expected 3 degrees of freedom per body");
+            throw invalid_argument(who + ": " + std::to_string(mass_.size()) +
+                                   " masses for a state of fixed dimension " + std::to_string(State::dimension) +
+                                   "; expected 3 degrees of freedom per body");
         plan_wisdom_holman(table_, options_, who);  // refuses what does not fit, before any work
-        if (options_.coordinates == wh_coordinates::jacobi) return flows_type(std::in_place_type<jacobi_flows>, mass_, G_);
+        if (options_.coordinates == wh_coordinates::jacobi)
+            return flows_type(std::in_place_type<jacobi_flows>, mass_, G_);
         return flows_type(std::in_place_type<democratic_flows>, mass_, G_);
     }
 
