@@ -1,4 +1,4 @@
-// Cost per step of the Wisdom-Holman stepper (wisdom_holman.hpp; democratic
+// Cost per step of the Wisdom-Holman stepper (planetary/wisdom_holman_stepper.hpp; democratic
 // heliocentric coordinates, Duncan, Levison & Lee 1998, Astron. J. 116, 2067)
 // on the outer solar system of Hairer, Lubich & Wanner, against a tight
 // hand-written loop of the same method: the state in plain arrays, the scalar
@@ -25,9 +25,9 @@
 #include <sympl/core/hamiltonian.hpp>
 #include <sympl/hamiltonians/outer_solar_system.hpp>
 #include <sympl/methods/catalog.hpp>
-#include <sympl/methods/kepler_drift.hpp>
-#include <sympl/methods/planetary_coordinates.hpp>
-#include <sympl/methods/wisdom_holman.hpp>
+#include <sympl/planetary/kepler_lanes.hpp>
+#include <sympl/planetary/coordinates.hpp>
+#include <sympl/planetary/wisdom_holman_stepper.hpp>
 
 namespace {
 using State = sympl::phase_space<double, 18>;

@@ -9,7 +9,7 @@
 #include <sympl/core/error.hpp>
 #include <sympl/methods/extended_phase_space.hpp>
 #include <sympl/methods/extrapolation.hpp>
-#include <sympl/methods/wisdom_holman.hpp>
+#include <sympl/planetary/wisdom_holman_stepper.hpp>
 
 namespace sympl::app {
 

@@ -23,7 +23,7 @@
 #include "requirements.hpp"
 
 namespace sympl {
-struct wisdom_holman_options;  // methods/wisdom_holman.hpp
+struct wisdom_holman_options;  // planetary/wisdom_holman_plan.hpp
 }
 
 namespace sympl::app {
@@ -147,7 +147,7 @@ inline constexpr std::array<method_kind_entry, method_kind_count> method_kind_en
      .description = "wh(<table>[, corrector = K][, kernel = composition|lazy][, coordinates = jacobi]): "
                     "Wisdom-Holman splitting of a planetary system, the table's drifts the exact Kepler flow about "
                     "the star (Jacobi: about the interior masses), its kicks the planets' interaction "
-                    "(wisdom_holman.hpp); leapfrog_kdk, saba_2, ... (tables for T = p^2/2 lose their extra order "
+                    "(planetary/wisdom_holman_stepper.hpp); leapfrog_kdk, saba_2, ... (tables for T = p^2/2 lose their extra order "
                     "here); a symmetric table takes a symplectic corrector of order K = 3, 5, 7, 9, 11 or 17, "
                     "leapfrog_dkd a kernel too (lazy: Jacobi coordinates only)"},
 }};

@@ -35,7 +35,7 @@ enum class needs {
     splitting,            // a kick-drift table: a separable Hamiltonian, or a damped, driven one (conformal_splitting.hpp)
     general_hamiltonian,  // any H(q, p) (general_hamiltonian.hpp), a separable one too
     quadratic_kinetic,    // a separable Hamiltonian whose T is quadratic in p: q'' = F(q) (rkn_pairs.hpp)
-    planetary,            // point masses about a star, with `mass` (star first) and `G` (wisdom_holman.hpp)
+    planetary,            // point masses about a star, with `mass` (star first) and `G` (planetary/wisdom_holman_stepper.hpp)
 };
 
 struct requirement {

@@ -1,6 +1,6 @@
 #pragma once
 // The kind for planetary systems (run_kind<wisdom_holman>): the method's table
-// run as a Wisdom-Holman splitting (methods/wisdom_holman.hpp), its drifts the
+// run as a Wisdom-Holman splitting (planetary/wisdom_holman_stepper.hpp), its drifts the
 // exact Kepler flows about the star, its kicks the planets' interaction, in
 // democratic heliocentric or Jacobi coordinates that the stepper keeps between
 // steps (not resumable from a checkpoint, which holds inertial coordinates),

@@ -19,10 +19,10 @@
 
 #include <Eigen/Core>
 
-#include <sympl/methods/kepler_drift.hpp>
-#include <sympl/methods/kepler_tangent.hpp>
+#include <sympl/planetary/kepler_drift.hpp>
+#include <sympl/planetary/kepler_tangent.hpp>
 
-namespace test_methods_test_kepler_tangent {  // one per file: the tests build in batches (CMakeLists.txt)
+namespace test_planetary_test_kepler_tangent {  // one per file: the tests build in batches (CMakeLists.txt)
 
 using namespace sympl;
 
@@ -89,4 +89,4 @@ TEST_CASE("kepler_tangent: a drift of whole periods moves the body by the change
     CHECK_THROWS_AS(tangent_error({0, 0, 0}, v, dr, dv, gm, 1.0), invalid_argument);
 }
 
-}  // namespace test_methods_test_kepler_tangent
+}  // namespace test_planetary_test_kepler_tangent

@@ -1,6 +1,7 @@
 #pragma once
 // Coordinates of planetary systems: a star (body 0, mass m_0) and N planets
-// (bodies 1..N), as the Wisdom-Holman splittings need them.
+// (bodies 1..N), as the Wisdom-Holman splittings need them, and the checks
+// of masses and states every planetary header shares.
 //
 // A state is a phase_space of 3 (N + 1) degrees of freedom laid out as in
 // hamiltonians/outer_solar_system.hpp: q = (x_0, y_0, z_0, x_1, ...), p the
@@ -35,20 +36,54 @@
 namespace sympl {
 
 namespace detail {
-template <class S, int D>
-std::size_t checked_bodies(const phase_space<S, D>& x, std::span<const double> mass, const char* who) {
-    if (mass.size() < 2)
-        throw invalid_argument(std::string(who) + ": " + std::to_string(mass.size()) +
+// Every mass finite and > 0, and at least `least` of them (2: a star and a planet).
+inline void check_masses(std::span<const double> mass, const std::string& who, std::size_t least = 2) {
+    if (mass.size() < least)
+        throw invalid_argument(who + ": " + std::to_string(mass.size()) +
                                " masses; expected a star and at least one planet");
-    if (x.size() != Eigen::Index(3 * mass.size()))
-        throw invalid_argument(std::string(who) + ": a state of " + std::to_string(x.size()) + " degrees of freedom for " +
-                               std::to_string(mass.size()) + " bodies; expected 3 per body, " +
-                               std::to_string(3 * mass.size()));
     for (std::size_t i = 0; i < mass.size(); ++i)
         if (!(std::isfinite(mass[i]) && mass[i] > 0))
-            throw invalid_argument(std::string(who) + ": mass of body " + std::to_string(i) + " = " +
-                                   number_text(mass[i]) + "; expected a finite mass > 0");
+            throw invalid_argument(who + ": mass of body " + std::to_string(i) + " = " + number_text(mass[i]) +
+                                   "; expected a finite mass > 0");
+}
+
+// A state of 3 degrees of freedom per body for masses that check_masses accepts.
+template <class S, int D>
+std::size_t checked_bodies(const phase_space<S, D>& x, std::span<const double> mass, const std::string& who) {
+    if (mass.size() >= 2 && x.size() != Eigen::Index(3 * mass.size()))
+        throw invalid_argument(who + ": a state of " + std::to_string(x.size()) + " degrees of freedom for " +
+                               std::to_string(mass.size()) + " bodies; expected 3 per body, " +
+                               std::to_string(3 * mass.size()));
+    check_masses(mass, who);
     return mass.size();
+}
+
+// checked_bodies, and every coordinate finite, no two bodies at one position.
+template <class S, int D>
+std::size_t checked_finite_bodies(const phase_space<S, D>& x, std::span<const double> mass, const std::string& who) {
+    const std::size_t bodies = checked_bodies(x, mass, who);
+    const char* axis[] = {"x", "y", "z"};
+    for (std::size_t i = 0; i < bodies; ++i)
+        for (int k = 0; k < 3; ++k) {
+            const Eigen::Index c = Eigen::Index(3 * i) + k;
+            if (!std::isfinite(x.q[c]))
+                throw invalid_argument(who + ": position " + axis[k] + " of body " + std::to_string(i) + " = " +
+                                       number_text(x.q[c]) + "; expected a finite number");
+            if (!std::isfinite(x.p[c]))
+                throw invalid_argument(who + ": momentum " + axis[k] + " of body " + std::to_string(i) + " = " +
+                                       number_text(x.p[c]) + "; expected a finite number");
+        }
+    for (std::size_t i = 1; i < bodies; ++i)
+        for (std::size_t j = 0; j < i; ++j) {
+            const Eigen::Index c = Eigen::Index(3 * i);
+            const auto d = (x.q.template segment<3>(c) - x.q.template segment<3>(Eigen::Index(3 * j))).eval();
+            if (!(d.squaredNorm() > 0))
+                throw invalid_argument(who + ": body " + std::to_string(i) + " is at the position of body " +
+                                       std::to_string(j) + (j == 0 ? " (the star)" : "") + ", (" +
+                                       number_text(x.q[c]) + ", " + number_text(x.q[c + 1]) + ", " +
+                                       number_text(x.q[c + 2]) + "); expected distinct positions");
+        }
+    return bodies;
 }
 
 template <class S, int D>
@@ -67,10 +102,7 @@ inline std::vector<double> interior_masses(std::span<const double> mass) {
 
 // Jacobi masses m'_0 = eta_N, m'_i = m_i eta_{i-1} / eta_i (Wisdom & Holman 1991, eq. 9).
 inline std::vector<double> jacobi_masses(std::span<const double> mass) {
-    for (std::size_t i = 0; i < mass.size(); ++i)
-        if (!(std::isfinite(mass[i]) && mass[i] > 0))
-            throw invalid_argument("jacobi_masses: mass of body " + std::to_string(i) + " = " +
-                                   detail::number_text(mass[i]) + "; expected a finite mass > 0");
+    detail::check_masses(mass, "jacobi_masses", 0);
     const std::vector<double> eta = interior_masses(mass);
     std::vector<double> m(mass.size());
     if (mass.empty()) return m;

@@ -38,10 +38,10 @@
 #include <sympl/core/splitting_stepper.hpp>
 #include <sympl/hamiltonians/outer_solar_system.hpp>
 #include <sympl/methods/catalog.hpp>
-#include <sympl/methods/kepler_drift.hpp>
-#include <sympl/methods/wisdom_holman.hpp>
+#include <sympl/planetary/kepler_drift.hpp>
+#include <sympl/planetary/wisdom_holman_stepper.hpp>
 
-namespace test_methods_test_wisdom_holman {  // one per file: the tests build in batches (CMakeLists.txt)
+namespace test_planetary_test_wisdom_holman_stepper {  // one per file: the tests build in batches (CMakeLists.txt)
 
 using namespace sympl;
 
@@ -52,7 +52,7 @@ using State = phase_space<double>;
 using V3 = Eigen::Vector3d;
 
 // H = sum |p_i|^2 / 2m_i - sum_{i<j} G m_i m_j / |q_i - q_j| in long double.
-long double nbody_energy(const std::vector<double>& m, double G, const State& x) {
+long double energy_ld(const std::vector<double>& m, double G, const State& x) {
     long double t = 0, v = 0;
     const std::size_t n = m.size();
     for (std::size_t i = 0; i < n; ++i) {
@@ -111,11 +111,11 @@ energy_run energy_errors(const planetary_system& s, const table& t, double h, st
                          wisdom_holman_options options = {}) {
     wisdom_holman_stepper<State> wh(s.mass, s.G, t, options);
     State x = s.start;
-    const long double e0 = nbody_energy(s.mass, s.G, x);
+    const long double e0 = energy_ld(s.mass, s.G, x);
     energy_run r;
     for (std::size_t k = 1; k <= n; ++k) {
         wh.step(x, h);
-        const double e = double(std::fabs((nbody_energy(s.mass, s.G, x) - e0) / e0));
+        const double e = double(std::fabs((energy_ld(s.mass, s.G, x) - e0) / e0));
         r.worst = std::max(r.worst, e);
         (2 * k <= n ? r.first_half : r.second_half) = std::max(2 * k <= n ? r.first_half : r.second_half, e);
     }
@@ -238,7 +238,7 @@ TEST_CASE("wisdom_holman: on the outer solar system, far below the T + V leapfro
     const planetary_system s = outer_solar_system();
     const double h = 50;  // days; Jupiter's period is 4332 days
     const std::size_t n = 10000, every = 10;
-    const long double e0 = nbody_energy(s.mass, s.G, s.start);
+    const long double e0 = energy_ld(s.mass, s.G, s.start);
     auto wh = make_wisdom_holman<Fixed>(sys, method("leapfrog_kdk"));
     auto tv = make_stepper<Fixed>(sys, method("leapfrog_kdk"));
     Fixed a = sys.initial_state(), b = a;
@@ -246,8 +246,8 @@ TEST_CASE("wisdom_holman: on the outer solar system, far below the T + V leapfro
     for (std::size_t k = 0; k < n; k += every) {
         wh.steps(a, h, every);
         tv.steps(b, h, every);
-        worst_wh = std::max(worst_wh, double(std::fabs(nbody_energy(s.mass, s.G, State(a.q, a.p)) / e0 - 1)));
-        worst_tv = std::max(worst_tv, double(std::fabs(nbody_energy(s.mass, s.G, State(b.q, b.p)) / e0 - 1)));
+        worst_wh = std::max(worst_wh, double(std::fabs(energy_ld(s.mass, s.G, State(a.q, a.p)) / e0 - 1)));
+        worst_tv = std::max(worst_tv, double(std::fabs(energy_ld(s.mass, s.G, State(b.q, b.p)) / e0 - 1)));
     }
     MESSAGE("h = 50 days, 10^4 steps: largest relative energy error " << worst_wh << " (Wisdom-Holman), " << worst_tv
                                                                        << " (T + V leapfrog): ratio " << worst_tv / worst_wh);
@@ -261,7 +261,7 @@ TEST_CASE("wisdom_holman: the outer solar system's energy error stays bounded ov
     const hamiltonians::outer_solar_system sys{};
     using Fixed = phase_space<double, 18>;
     const planetary_system s = outer_solar_system();
-    const long double e0 = nbody_energy(s.mass, s.G, s.start);
+    const long double e0 = energy_ld(s.mass, s.G, s.start);
     auto wh = make_wisdom_holman<Fixed>(sys, method("leapfrog_kdk"));
     Fixed x = sys.initial_state();
     const std::size_t n = 100000, every = 10;
@@ -269,7 +269,7 @@ TEST_CASE("wisdom_holman: the outer solar system's energy error stays bounded ov
     for (std::size_t k = 0; k < n; k += every) {
         wh.steps(x, 50.0, every);
         double& worst = halves[2 * k < n ? 0 : 1];
-        worst = std::max(worst, double(std::fabs(nbody_energy(s.mass, s.G, State(x.q, x.p)) / e0 - 1)));
+        worst = std::max(worst, double(std::fabs(energy_ld(s.mass, s.G, State(x.q, x.p)) / e0 - 1)));
     }
     MESSAGE("h = 50 days: largest relative energy error " << halves[0] << " (first 5 10^4 steps), " << halves[1]
                                                           << " (last 5 10^4)");
@@ -312,62 +312,6 @@ TEST_CASE("wisdom_holman: steps(n) equals n calls of step() to rounding, counter
     CHECK(max_difference(x, s.start) < 1e-12);
 }
 
-// The corrector's weights (corrector_weights): for the conditions see wisdom_holman.hpp.
-// [u^2n] of (u/2) coth(u/2) is B_2n / (2n)!, of (u/2) / sinh(u/2) it is
-// (2^(1-2n) - 1) B_2n / (2n)! (Bernoulli numbers B_2n).
-TEST_CASE("wisdom_holman: the corrector weights solve their conditions") {
-    const long double bernoulli[] = {1.0L / 6, -1.0L / 30, 1.0L / 42, -1.0L / 30, 5.0L / 66, -691.0L / 2730, 7.0L / 6, -3617.0L / 510};
-    for (const leapfrog_kernel kernel : {leapfrog_kernel::kick_drift_kick, leapfrog_kernel::drift_kick_drift})
-        for (int order : {3, 5, 7, 9, 11, 17}) {
-            const std::vector<coefficient> c = corrector_weights(order, kernel);
-            REQUIRE(int(c.size()) == (order - 1) / 2);
-            long double factorial = 1;  // (2k - 1)!
-            for (std::size_t k = 1; k <= c.size(); ++k) {
-                if (k > 1) factorial *= (2 * k - 2) * (2 * k - 1);
-                long double moment = 0, size = 0;
-                for (std::size_t i = 0; i < c.size(); ++i) {
-                    const long double term = 4 * c[i] * std::pow(corrector_alpha * (i + 1), 2 * k - 1) / factorial;
-                    moment += term, size += std::fabs(term);
-                }
-                const long double series = bernoulli[k - 1] / (factorial * 2 * k) *
-                                           (kernel == leapfrog_kernel::kick_drift_kick ? 1 : std::pow(2.0L, 1 - 2 * int(k)) - 1);
-                INFO("order " << order << ", k = " << k);
-                // Cancellation: the terms are up to 1e8 times their sum; long double has 1e-19.
-                CHECK(std::fabs(double(moment + series)) < 1e-17 * double(size));
-            }
-        }
-    CHECK_THROWS_WITH_AS(corrector_weights(4, leapfrog_kernel::kick_drift_kick),
-                         doctest::Contains("order 4; expected 3, 5, 7, 9, 11 or 17"), invalid_argument);
-}
-
-// corrector_weights(order, table) solves the same conditions for any symmetric
-// table's f(u): for the two leapfrogs it gives the tabulated weights (the
-// published ones of Wisdom, Holman & Touma 1996 for drift-kick-drift) to
-// long double's rounding, grown by the solve (measured: 2e-17 at order 17).
-TEST_CASE("wisdom_holman: the corrector weights of a symmetric table, solved, are the leapfrogs' tabulated ones") {
-    for (const leapfrog_kernel kernel : {leapfrog_kernel::kick_drift_kick, leapfrog_kernel::drift_kick_drift})
-        for (int order : {3, 5, 7, 9, 11, 17}) {
-            const std::vector<coefficient> tabulated = corrector_weights(order, kernel);
-            const std::vector<coefficient> solved =
-                corrector_weights(order, method(kernel == leapfrog_kernel::kick_drift_kick ? "leapfrog_kdk" : "leapfrog_dkd"));
-            REQUIRE(solved.size() == tabulated.size());
-            for (std::size_t i = 0; i < solved.size(); ++i) {
-                INFO("order " << order << ", weight " << i + 1);
-                CHECK(std::fabs(double((solved[i] - tabulated[i]) / tabulated[i])) < 1e-15);
-            }
-        }
-    CHECK_THROWS_WITH_AS(corrector_weights(5, method("ruth_3")), doctest::Contains("(not symmetric)"), invalid_argument);
-    CHECK_THROWS_WITH_AS(corrector_weights(6, method("saba_2")), doctest::Contains("order 6; expected 3, 5"),
-                         invalid_argument);
-}
-
-// A corrector on a table for near-integrable systems: SABA_2 and SBAB_2
-// (Laskar & Robutel 2001) have energy error O(eps h^4 + eps^2 h^2),
-// f(u) - 1 = O(u^4); corrector 5 removes the u^4 term, leaving
-// O(eps h^6 + eps^2 h^2). At eps = 1e-7 the eps terms show: slope 4 without,
-// 6 with. (At 1/10 of the inner period the slopes are still 4.65 and 6.35:
-// the interaction's higher harmonics, at which h ad_A is not small.)
-// Measured: 4.07 and 4.09 without, 6.07 and 6.06 with.
 TEST_CASE("wisdom_holman: a corrector on SABA_2 and SBAB_2 removes their eps h^4 terms") {
     const double span = 20 * two_pi;
     for (const std::string name : {"saba_2", "sbab_2"})
@@ -430,13 +374,13 @@ TEST_CASE("wisdom_holman: on the outer solar system the corrector's error scales
     double errors[2][2] = {};  // [scale 1, 0.1][without, with corrector 11]
     for (int m = 0; m < 2; ++m) {
         const planetary_system s = outer_solar_system(m == 0 ? 1.0 : 0.1);
-        const long double e0 = nbody_energy(s.mass, s.G, s.start);
+        const long double e0 = energy_ld(s.mass, s.G, s.start);
         for (int c = 0; c < 2; ++c) {
             wisdom_holman_stepper<State> wh(s.mass, s.G, method("leapfrog_kdk"), {c == 0 ? 0 : 11});
             State x = s.start;
             for (std::size_t k = 0; k < n; k += every) {
                 wh.steps(x, h, every);
-                errors[m][c] = std::max(errors[m][c], double(std::fabs(nbody_energy(s.mass, s.G, x) / e0 - 1)));
+                errors[m][c] = std::max(errors[m][c], double(std::fabs(energy_ld(s.mass, s.G, x) / e0 - 1)));
             }
         }
     }
@@ -504,34 +448,6 @@ TEST_CASE("wisdom_holman: the corrector in and out: chunks, a new dt, the cost, 
                          doctest::Contains("order 4; expected 3, 5, 7, 9, 11 or 17"), invalid_argument);
 }
 
-// The composition kernel's sub-steps (kernel_substeps): in total one kick and
-// no drift; every side kick cancelled by one of opposite weight at the same
-// Kepler phase (so to first order in the interaction the kernel is kick(h)
-// and the leapfrog's corrector still fits); 2ab = 1/24, the weight of the
-// commutator that cancels the corrected leapfrog's -h^2/24 [B,[A,B]].
-TEST_CASE("wisdom_holman: the composition kernel's sub-steps") {
-    const std::vector<substep> ops = kernel_substeps(wh_kernel::composition);
-    long double time = 0, kicks = 0;
-    std::vector<std::pair<long double, long double>> at;  // (Kepler phase, kick weight)
-    for (const substep& o : ops) {
-        if (o.kind == substep::drift) time += o.weight;
-        else kicks += o.weight, at.emplace_back(time, o.weight);
-    }
-    CHECK(time == 0);
-    CHECK(kicks == 1);
-    for (const auto& [t, w] : at) {
-        long double sum = 0;
-        for (const auto& [u, v] : at) sum += (u == t ? v : 0);
-        CHECK(sum == (t == 0 ? 1 : 0));
-    }
-    CHECK(std::fabs(2 * composition_kernel_drift * composition_kernel_kick - 1.0L / 24) < 1e-18L);
-    CHECK(kernel_substeps(wh_kernel::kick).size() == 1);
-}
-
-// Wisdom, Holman & Touma 1996; Rein, Tamayo & Brown 2019: corrector and
-// kernel leave O(eps h^(2K+2) + eps^2 h^4), the corrector alone O(eps^2 h^2).
-// eps = 1e-3 and h from 1/20 to 1/40 of the inner period with corrector 17:
-// the eps h^18 term is far below both (the corrector-17 test above), so the
 // slopes are those of the eps^2 terms.
 TEST_CASE("wisdom_holman: the composition kernel takes the corrected error from eps^2 h^2 to eps^2 h^4") {
     const double span = 20 * two_pi;
@@ -841,4 +757,4 @@ TEST_CASE("wisdom_holman: bad input names the body") {
     }
 }
 
-}  // namespace test_methods_test_wisdom_holman
+}  // namespace test_planetary_test_wisdom_holman_stepper
