@@ -13,6 +13,7 @@
 #include "core/hamiltonian.hpp"
 #include "core/integrate.hpp"
 #include "core/phase_space.hpp"
+#include "core/splitting_loop.hpp"
 #include "core/splitting_stepper.hpp"
 #include "core/table.hpp"
 #include "methods/adaptive.hpp"
