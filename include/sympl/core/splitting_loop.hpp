@@ -100,8 +100,8 @@ struct splitting_loop {
             return options.compensated ? run_with_gradient<true>(x, dt, n, have_force)
                                        : run_with_gradient<false>(x, dt, n, have_force);
         const std::size_t L = weights.size();
-        for (std::size_t k = 0; k < L; ++k) sizes[k] = weights[k] * dt;
         if (n > 1) {
+            for (std::size_t k = 0; k < L; ++k) sizes[k] = weights[k] * dt;
             for (std::size_t k = 1; k < L; ++k) body[k - 1] = sizes[k];
             body.back() = joined ? sizes[L - 1] + sizes[0] : sizes[0];
         }
@@ -110,14 +110,14 @@ struct splitting_loop {
         if constexpr (State::dimension != Eigen::Dynamic) {
             State y = x;
             vector f = force, v = velocity;
-            options.compensated ? run_loop<true>(y, f, v, n, have_force, reuse_v)
-                                : run_loop<false>(y, f, v, n, have_force, reuse_v);
+            options.compensated ? run_loop<true>(y, f, v, dt, n, have_force, reuse_v)
+                                : run_loop<false>(y, f, v, dt, n, have_force, reuse_v);
             x = y;
             force = f;
             velocity = v;
         } else {
-            options.compensated ? run_loop<true>(x, force, velocity, n, have_force, reuse_v)
-                                : run_loop<false>(x, force, velocity, n, have_force, reuse_v);
+            options.compensated ? run_loop<true>(x, force, velocity, dt, n, have_force, reuse_v)
+                                : run_loop<false>(x, force, velocity, dt, n, have_force, reuse_v);
         }
         // Counted, not tallied in the loop: the body and the ends hold fixed numbers of each kind.
         const std::size_t body_kicks = kicks - (joined && first_is_kick), body_drifts = drifts - (joined && !first_is_kick);
@@ -130,13 +130,14 @@ struct splitting_loop {
     // The stream s0, (body) n - 1 times, s1 .. s(L-1); one step is s0 .. s(L-1)
     // as one alternating run, so a kick and the drift after it share a pass.
     template <bool Compensated>
-    [[gnu::always_inline]] inline void run_loop(State& x, vector& f, vector& v, std::size_t n, bool have_f, bool have_v) {
+    [[gnu::always_inline]] inline void run_loop(State& x, vector& f, vector& v, scalar dt, std::size_t n, bool have_f,
+                                                bool have_v) {
         const std::size_t L = sizes.size();
-        if (n == 1) return alternate<Compensated>(x, f, v, sizes.data(), L, first_is_kick, have_f, have_v);
-        alternate<Compensated>(x, f, v, sizes.data(), 1, first_is_kick, have_f, have_v);
+        if (n == 1) return alternate<Compensated>(x, f, v, weights.data(), dt, L, first_is_kick, have_f, have_v);
+        alternate<Compensated>(x, f, v, weights.data(), dt, 1, first_is_kick, have_f, have_v);
         if (first_is_kick) repeat_body<Compensated, false>(x, f, v, n - 1);
         else repeat_body<Compensated, true>(x, f, v, n - 1);
-        alternate<Compensated>(x, f, v, sizes.data() + 1, L - 1, !first_is_kick, false, false);
+        alternate<Compensated>(x, f, v, weights.data() + 1, dt, L - 1, !first_is_kick, false, false);
     }
 
     // The body `steps` times over as one flat loop over pairs of sub-steps
@@ -185,20 +186,23 @@ struct splitting_loop {
         }
     }
 
-    // count alternating sub-steps of sizes hs[0..count), the first a kick or a
-    // drift, with a fresh force or velocity except a first one already at hand.
+    // count alternating sub-steps of sizes w[0..count) dt, the first a kick or
+    // a drift, with a fresh force or velocity except a first one already at hand.
     template <bool Compensated>
-    [[gnu::always_inline]] inline void alternate(State& x, vector& f, vector& v, const scalar* hs, std::size_t count,
-                                                 bool starts_with_kick, bool have_f, bool have_v) {
+    [[gnu::always_inline]] inline void alternate(State& x, vector& f, vector& v, const scalar* w, scalar dt,
+                                                 std::size_t count, bool starts_with_kick, bool have_f, bool have_v) {
         std::size_t i = 0;
-        if (!starts_with_kick && count > 0) have_v ? drift_with<Compensated>(x, v, hs[i++]) : drift<Compensated>(x, v, hs[i++]);
+        if (!starts_with_kick && count > 0) {
+            have_v ? drift_with<Compensated>(x, v, w[0] * dt) : drift<Compensated>(x, v, w[0] * dt);
+            ++i;
+        }
         for (; i + 1 < count; i += 2, have_f = false) {
             if (!have_f) sympl::force(h, x.q, f);
-            kick_and_drift<Compensated>(x, f, v, hs[i], hs[i + 1]);
+            kick_and_drift<Compensated>(x, f, v, w[i] * dt, w[i + 1] * dt);
         }
         if (i < count) {
             if (!have_f) sympl::force(h, x.q, f);
-            kick<Compensated>(x, f, hs[i]);
+            kick<Compensated>(x, f, w[i] * dt);
         }
     }
 
