@@ -67,7 +67,7 @@ struct splitting_loop {
             v->resize(n);
             v->setZero();
         }
-        force_fresh = velocity_fresh = false;
+        force_fresh = velocity_fresh = p_before_valid = false;
     }
 
     // A user's force or velocity that returns a vector of another size would
@@ -88,14 +88,19 @@ struct splitting_loop {
     }
 
     // n steps. have_force: `force` is F(x.q), so a first kick takes it as it
-    // is; have_velocity: likewise `velocity` for a first drift. Small
-    // fixed-size states run in locals the compiler keeps in registers.
-    void run(State& x, scalar dt, std::size_t n, bool have_force, bool have_velocity) {
+    // is; have_velocity: likewise `velocity` for a first drift; join (with
+    // have_force, where p_before_last_kick is valid): x is the state the last
+    // run returned, whose last kick is joined with this run's first as in
+    // steps(n). Small fixed-size states run in locals kept in registers.
+    [[gnu::always_inline]] inline void run(State& x, scalar dt, std::size_t n, bool have_force, bool have_velocity,
+                                           bool join = false) {
         if (n == 0) {
             force_fresh = force_fresh && have_force;
             velocity_fresh = velocity_fresh && have_velocity;
+            p_before_valid = p_before_valid && have_force;
             return;
         }
+        p_before_valid = false;
         if (!gradient_ops.empty())
             return options.compensated ? run_with_gradient<true>(x, dt, n, have_force)
                                        : run_with_gradient<false>(x, dt, n, have_force);
@@ -110,14 +115,14 @@ struct splitting_loop {
         if constexpr (State::dimension != Eigen::Dynamic) {
             State y = x;
             vector f = force, v = velocity;
-            options.compensated ? run_loop<true>(y, f, v, dt, n, have_force, reuse_v)
-                                : run_loop<false>(y, f, v, dt, n, have_force, reuse_v);
+            options.compensated ? run_loop<true>(y, f, v, dt, n, have_force, reuse_v, false)
+                                : run_loop<false>(y, f, v, dt, n, have_force, reuse_v, join);
             x = y;
             force = f;
             velocity = v;
         } else {
-            options.compensated ? run_loop<true>(x, force, velocity, dt, n, have_force, reuse_v)
-                                : run_loop<false>(x, force, velocity, dt, n, have_force, reuse_v);
+            options.compensated ? run_loop<true>(x, force, velocity, dt, n, have_force, reuse_v, false)
+                                : run_loop<false>(x, force, velocity, dt, n, have_force, reuse_v, false);
         }
         // Counted, not tallied in the loop: the body and the ends hold fixed numbers of each kind.
         const std::size_t body_kicks = kicks - (joined && first_is_kick), body_drifts = drifts - (joined && !first_is_kick);
@@ -129,15 +134,35 @@ struct splitting_loop {
 
     // The stream s0, (body) n - 1 times, s1 .. s(L-1); one step is s0 .. s(L-1)
     // as one alternating run, so a kick and the drift after it share a pass.
+    // A small state of a kick-first joined table keeps p before its last kick
+    // (`apart`), so that the next call can start from it with the joined kick
+    // (join): a loop of step() is then steps(n) bit for bit.
     template <bool Compensated>
     [[gnu::always_inline]] inline void run_loop(State& x, vector& f, vector& v, scalar dt, std::size_t n, bool have_f,
-                                                bool have_v) {
+                                                bool have_v, bool join) {
         const std::size_t L = sizes.size();
-        if (n == 1) return alternate<Compensated>(x, f, v, weights.data(), dt, L, first_is_kick, have_f, have_v);
-        alternate<Compensated>(x, f, v, weights.data(), dt, 1, first_is_kick, have_f, have_v);
-        if (first_is_kick) repeat_body<Compensated, false>(x, f, v, n - 1);
-        else repeat_body<Compensated, true>(x, f, v, n - 1);
-        alternate<Compensated>(x, f, v, weights.data() + 1, dt, L - 1, !first_is_kick, false, false);
+        const std::size_t apart = small_fixed && !Compensated && joined && first_is_kick ? 1 : 0;
+        std::size_t done = 0;  // sub-steps of the first step already run
+        if (join) {
+            x.p = p_before_last_kick;
+            kick<Compensated>(x, f, weights[L - 1] * dt + weights[0] * dt);
+            done = 1;
+        }
+        if (n == 1) {
+            alternate<Compensated>(x, f, v, weights.data() + done, dt, L - apart - done, first_is_kick == (done == 0),
+                                   have_f && !done, have_v && !done);
+        } else {
+            if (!done) alternate<Compensated>(x, f, v, weights.data(), dt, 1, first_is_kick, have_f, have_v);
+            if (first_is_kick) repeat_body<Compensated, false>(x, f, v, n - 1);
+            else repeat_body<Compensated, true>(x, f, v, n - 1);
+            alternate<Compensated>(x, f, v, weights.data() + 1, dt, L - 1 - apart, !first_is_kick, false, false);
+        }
+        if (apart) {
+            p_before_last_kick = x.p;
+            p_before_valid = true;
+            sympl::force(h, x.q, f);
+            kick<Compensated>(x, f, weights[L - 1] * dt);
+        }
     }
 
     // The body `steps` times over as one flat loop over pairs of sub-steps
@@ -322,6 +347,8 @@ struct splitting_loop {
     bool first_is_kick = true, last_is_kick = true, joined = false, velocity_is_p = false;
     std::size_t kicks = 0, drifts = 0;
     vector force, velocity;
+    vector p_before_last_kick;    // small fixed-size states of kick-first joined tables (run_loop)
+    bool p_before_valid = false;  // p_before_last_kick is that of the state the last run returned
     vector q_error, p_error, increment, sum;  // compensated summation only
     bool force_fresh = false, velocity_fresh = false;  // force / velocity are those of the state the last run returned
     std::uint64_t forces_counted = 0, velocities_counted = 0, derivatives_counted = 0;

@@ -49,17 +49,17 @@ public:
 
     // One step of size dt (dt < 0 runs backwards). The force the last call
     // ended with is reused when x.q is the q that call returned, bit for bit.
-    void step(State& x, scalar dt) { steps(x, dt, 1); }
+    [[gnu::always_inline]] inline void step(State& x, scalar dt) { steps(x, dt, 1); }
 
     // n consecutive steps: forces and velocities carried over between steps,
     // and a step's last sub-step joined with the next step's first when they
     // are of one kind (the result differs from n calls of step() by rounding
     // only; tables that start and end with different kinds: bit for bit).
-    void steps(State& x, scalar dt, std::size_t n) {
+    [[gnu::always_inline]] inline void steps(State& x, scalar dt, std::size_t n) {
         check_step(dt);
-        const bool reuse = kept_force_matches(x);
-        if (!reuse) check_state_once_sized(x);
-        loop_.run(x, dt, n, reuse, false);
+        const int kept = kept_force_matches(x);
+        if (kept == 0) check_state_once_sized(x);
+        loop_.run(x, dt, n, kept > 0, false, kept == 2);
         keep_force(x);
     }
 
@@ -130,7 +130,7 @@ private:
     }
 
     // The full check (hamiltonian.hpp): sizes, finiteness, reads in range.
-    void check_state_once_sized(const State& x) {
+    [[gnu::noinline, gnu::cold]] void check_state_once_sized(const State& x) {
         check_state(loop_.h, x, "splitting_stepper");
         if (loop_.force.size() != x.q.size()) {  // once per dimension
             size_workspace(x.q.size());
@@ -150,13 +150,14 @@ private:
     using bits = std::conditional_t<sizeof(scalar) == 8, std::uint64_t, std::uint32_t>;
     static constexpr bits exponent = sizeof(scalar) == 8 ? bits(0x7ff0000000000000ull) : bits(0x7f800000u);
 
-    // Whether x.q is, bit for bit, the q the kept force belongs to (known
+    // 1 if x.q is, bit for bit, the q the kept force belongs to (known
     // finite), and p is finite: one pass of integer operations the compiler
-    // vectorises, in place of check_state's. A state that fails gets the
-    // full check and a fresh force.
-    bool kept_force_matches(const State& x) const {
+    // vectorises, in place of check_state's; 2 if moreover the loop kept the
+    // p before its last kick and x.p is the p it returned (small states). 0:
+    // the full check and a fresh force.
+    [[gnu::always_inline]] inline int kept_force_matches(const State& x) const {
         if constexpr (caches) {
-            if (!kept_ || x.q.size() != kept_q_.size() || x.p.size() != kept_q_.size()) return false;
+            if (!kept_ || x.q.size() != kept_q_.size() || x.p.size() != kept_q_.size()) return 0;
             const scalar* const q = x.q.data();
             const scalar* const p = x.p.data();
             const scalar* const k = kept_q_.data();
@@ -165,15 +166,23 @@ private:
                 differ |= std::bit_cast<bits>(q[i]) ^ std::bit_cast<bits>(k[i]);
                 not_finite |= (std::bit_cast<bits>(p[i]) & exponent) == exponent;
             }
-            return differ == 0 && not_finite == 0;
+            if (differ != 0 || not_finite != 0) return 0;
+            if constexpr (State::dimension != Eigen::Dynamic) {
+                if (!loop_.p_before_valid) return 1;
+                bits p_differ = 0;
+                for (Eigen::Index i = 0; i < State::dimension; ++i)
+                    p_differ |= std::bit_cast<bits>(p[i]) ^ std::bit_cast<bits>(kept_p_[i]);
+                return p_differ == 0 ? 2 : 1;
+            }
+            return 1;
         } else {
-            return false;
+            return 0;
         }
     }
 
     // After a run that ends with a fresh force, the q it belongs to, copied if
     // finite (a non-finite q is refused by the next call's full check).
-    void keep_force(const State& x) {
+    [[gnu::always_inline]] inline void keep_force(const State& x) {
         if constexpr (caches) {
             kept_ = false;
             if (!loop_.first_is_kick || !loop_.force_fresh) return;
@@ -185,11 +194,13 @@ private:
                 not_finite |= (std::bit_cast<bits>(q[i]) & exponent) == exponent;
             }
             kept_ = not_finite == 0;
+            if constexpr (State::dimension != Eigen::Dynamic) kept_p_ = x.p;
         }
     }
 
     detail::splitting_loop<H, State> loop_;
     vector kept_q_;      // the q at which loop_.force was evaluated, when kept_
+    vector kept_p_;      // the p the last call returned (fixed-size states)
     bool kept_ = false;  // loop_.force belongs to kept_q_ and the first sub-step is a kick
 };
 
