@@ -30,16 +30,110 @@ struct stepper_options {
 
 namespace detail {
 
+// The two updates of a splitting, p += h F (a kick) and q += h dT/dp (a
+// drift), plain or with compensated summation, and a kick fused with the
+// drift after it (Gould & Tobochnik eq. 3.74).
+template <class H, class State>
+struct substep_updates {
+    using scalar = typename State::scalar;
+    using vector = typename State::vector;
+
+    explicit substep_updates(H hamiltonian) : h(std::move(hamiltonian)) {}
+
+    // Kahan summation: y += increment with the carried rounding error e.
+    void add_compensated(vector& y, vector& e) {
+        increment -= e;
+        sum = y + increment;
+        e = (sum - y) - increment;
+        y = sum;
+    }
+
+    // p += hs * force (Gould & Tobochnik eq. 3.74, the p half).
+    template <bool Compensated>
+    [[gnu::always_inline]] inline void kick(State& x, const vector& f, scalar hs) {
+        if constexpr (Compensated) {
+            increment = hs * f;
+            add_compensated(x.p, p_error);
+        } else {
+            x.p += hs * f;
+        }
+    }
+
+    // A kick and the drift after it; on a large state whose velocity(p) is p
+    // itself, one pass over q, p and f instead of two, the same operations in
+    // the same order.
+    template <bool Compensated>
+    [[gnu::always_inline]] inline void kick_and_drift(State& x, const vector& f, vector& v, scalar hk, scalar hd) {
+        if constexpr (!Compensated && reference_velocity && State::dimension == Eigen::Dynamic) {
+            if (velocity_is_p) {
+                scalar* const q = x.q.data();
+                scalar* const p = x.p.data();
+                const scalar* const g = f.data();
+                for (Eigen::Index i = 0, n = x.q.size(); i < n; ++i) {
+                    p[i] += hk * g[i];
+                    q[i] += hd * p[i];
+                }
+                return;
+            }
+        }
+        kick<Compensated>(x, f, hk);
+        drift<Compensated>(x, v, hd);
+    }
+
+    // q += hs * dT/dp(p) with dT/dp evaluated afresh (Gould & Tobochnik eq. 3.74, the q half).
+    template <bool Compensated>
+    [[gnu::always_inline]] inline void drift(State& x, vector& v, scalar hs) {
+        if constexpr (fused_velocity) {
+            if constexpr (Compensated) {
+                increment.noalias() = hs * h.velocity(x.p);
+                add_compensated(x.q, q_error);
+            } else {
+                x.q.noalias() += hs * h.velocity(x.p);
+            }
+        } else {
+            sympl::velocity(h, x.p, v);
+            drift_with<Compensated>(x, v, hs);
+        }
+    }
+
+    // q += hs * v with v = dT/dp(p) already at hand.
+    template <bool Compensated>
+    [[gnu::always_inline]] inline void drift_with(State& x, const vector& v, scalar hs) {
+        if constexpr (Compensated) {
+            increment = hs * v;
+            add_compensated(x.q, q_error);
+        } else {
+            x.q += hs * v;
+        }
+    }
+
+    // velocity(p) returns a reference: to p itself (dT/dp = p) when run() finds velocity_is_p.
+    static constexpr bool reference_velocity = requires(const H& hh, const vector& p) {
+        { hh.velocity(p) } -> std::same_as<const vector&>;
+    };
+    // A small fixed-size state runs in registers, updated by Eigen's packet operations (docs/speed.md).
+    static constexpr bool small_fixed = State::dimension != Eigen::Dynamic && State::dimension <= 16;
+    // An analytic velocity that returns an expression (e.g. p / m) fuses into the drift.
+    static constexpr bool fused_velocity = has_velocity_value<H, vector> && !has_velocity_into<H, vector>;
+
+    H h;
+    vector q_error, p_error, increment, sum;  // compensated summation only
+    bool velocity_is_p = false;
+};
+
 // The table's sub-steps, the workspace, what the last run left (its last force
 // and velocity, and whether they are those of the state it returned) and the
 // evaluation counts. splitting_stepper decides what may be reused.
 template <class H, class State>
-struct splitting_loop {
-    using scalar = typename State::scalar;
-    using vector = typename State::vector;
+struct splitting_loop : substep_updates<H, State> {
+    using base = substep_updates<H, State>;
+    using typename base::scalar;
+    using typename base::vector;
+    using base::h, base::q_error, base::p_error, base::increment, base::sum, base::velocity_is_p;
+    using base::reference_velocity, base::small_fixed, base::fused_velocity;
 
     splitting_loop(H hamiltonian, table t, stepper_options o)
-        : h(std::move(hamiltonian)), method(std::move(t)), options(o) {
+        : base(std::move(hamiltonian)), method(std::move(t)), options(o) {
         const auto ops = method.substeps();  // canonical: kinds alternate, no zero weights
         first_is_kick = ops.front().kind == substep::kick;
         last_is_kick = ops.back().kind == substep::kick;
@@ -145,7 +239,7 @@ struct splitting_loop {
         std::size_t done = 0;  // sub-steps of the first step already run
         if (join) {
             x.p = p_before_last_kick;
-            kick<Compensated>(x, f, weights[L - 1] * dt + weights[0] * dt);
+            this->template kick<Compensated>(x, f, weights[L - 1] * dt + weights[0] * dt);
             done = 1;
         }
         if (n == 1) {
@@ -161,7 +255,7 @@ struct splitting_loop {
             p_before_last_kick = x.p;
             p_before_valid = true;
             sympl::force(h, x.q, f);
-            kick<Compensated>(x, f, weights[L - 1] * dt);
+            this->template kick<Compensated>(x, f, weights[L - 1] * dt);
         }
     }
 
@@ -185,11 +279,11 @@ struct splitting_loop {
             if constexpr (KickFirst == kick_first_pairs) {
                 pair_loop<Compensated, kick_first_pairs>(x, f, v, body.data(), m, pairs);
             } else {
-                if constexpr (KickFirst) sympl::force(h, x.q, f), kick<Compensated>(x, f, body[0]);
-                else drift<Compensated>(x, v, body[0]);
+                if constexpr (KickFirst) sympl::force(h, x.q, f), this->template kick<Compensated>(x, f, body[0]);
+                else this->template drift<Compensated>(x, v, body[0]);
                 pair_loop<Compensated, kick_first_pairs>(x, f, v, rotated.data(), m, pairs - 1);
-                if constexpr (KickFirst) drift<Compensated>(x, v, body[m - 1]);
-                else sympl::force(h, x.q, f), kick<Compensated>(x, f, body[m - 1]);
+                if constexpr (KickFirst) this->template drift<Compensated>(x, v, body[m - 1]);
+                else sympl::force(h, x.q, f), this->template kick<Compensated>(x, f, body[m - 1]);
             }
         }
     }
@@ -202,11 +296,11 @@ struct splitting_loop {
         for (std::size_t i = 0, j = 0; i < pairs; ++i, j = j + 2 == m ? 0 : j + 2) {
             if constexpr (KickFirst) {
                 sympl::force(h, x.q, f);
-                kick_and_drift<Compensated>(x, f, v, hs[j], hs[j + 1]);
+                this->template kick_and_drift<Compensated>(x, f, v, hs[j], hs[j + 1]);
             } else {
-                drift<Compensated>(x, v, hs[j]);
+                this->template drift<Compensated>(x, v, hs[j]);
                 sympl::force(h, x.q, f);
-                kick<Compensated>(x, f, hs[j + 1]);
+                this->template kick<Compensated>(x, f, hs[j + 1]);
             }
         }
     }
@@ -218,16 +312,16 @@ struct splitting_loop {
                                                  std::size_t count, bool starts_with_kick, bool have_f, bool have_v) {
         std::size_t i = 0;
         if (!starts_with_kick && count > 0) {
-            have_v ? drift_with<Compensated>(x, v, w[0] * dt) : drift<Compensated>(x, v, w[0] * dt);
+            have_v ? this->template drift_with<Compensated>(x, v, w[0] * dt) : this->template drift<Compensated>(x, v, w[0] * dt);
             ++i;
         }
         for (; i + 1 < count; i += 2, have_f = false) {
             if (!have_f) sympl::force(h, x.q, f);
-            kick_and_drift<Compensated>(x, f, v, w[i] * dt, w[i + 1] * dt);
+            this->template kick_and_drift<Compensated>(x, f, v, w[i] * dt, w[i + 1] * dt);
         }
         if (i < count) {
             if (!have_f) sympl::force(h, x.q, f);
-            kick<Compensated>(x, f, w[i] * dt);
+            this->template kick<Compensated>(x, f, w[i] * dt);
         }
     }
 
@@ -244,18 +338,18 @@ struct splitting_loop {
                 for (const substep& o : gradient_ops) {
                     const scalar hs = static_cast<scalar>(o.weight) * dt;
                     if (o.kind == substep::drift) {
-                        drift<Compensated>(x, velocity, hs);
+                        this->template drift<Compensated>(x, velocity, hs);
                         ++velocities_counted;
                         fresh = false;
                         continue;
                     }
                     if (!fresh) sympl::force(h, x.q, force), ++forces_counted, fresh = true;
-                    kick<Compensated>(x, force, hs);
+                    this->template kick<Compensated>(x, force, hs);
                     if (o.gradient != 0) {
                         sympl::velocity(h, force, along);
                         force_derivative(h, x.q, along, force_change);
                         ++derivatives_counted;
-                        kick<Compensated>(x, force_change, 2 * static_cast<scalar>(o.gradient) * dt3);
+                        this->template kick<Compensated>(x, force_change, 2 * static_cast<scalar>(o.gradient) * dt3);
                     }
                 }
             force_fresh = fresh;
@@ -263,93 +357,15 @@ struct splitting_loop {
         }
     }
 
-    // Kahan summation: y += increment with the carried rounding error e.
-    void add_compensated(vector& y, vector& e) {
-        increment -= e;
-        sum = y + increment;
-        e = (sum - y) - increment;
-        y = sum;
-    }
-
-    // p += hs * force (Gould & Tobochnik eq. 3.74, the p half).
-    template <bool Compensated>
-    [[gnu::always_inline]] inline void kick(State& x, const vector& f, scalar hs) {
-        if constexpr (Compensated) {
-            increment = hs * f;
-            add_compensated(x.p, p_error);
-        } else {
-            x.p += hs * f;
-        }
-    }
-
-    // A kick and the drift after it; on a large state whose velocity(p) is p
-    // itself, one pass over q, p and f instead of two, the same operations in
-    // the same order.
-    template <bool Compensated>
-    [[gnu::always_inline]] inline void kick_and_drift(State& x, const vector& f, vector& v, scalar hk, scalar hd) {
-        if constexpr (!Compensated && reference_velocity && State::dimension == Eigen::Dynamic) {
-            if (velocity_is_p) {
-                scalar* const q = x.q.data();
-                scalar* const p = x.p.data();
-                const scalar* const g = f.data();
-                for (Eigen::Index i = 0, n = x.q.size(); i < n; ++i) {
-                    p[i] += hk * g[i];
-                    q[i] += hd * p[i];
-                }
-                return;
-            }
-        }
-        kick<Compensated>(x, f, hk);
-        drift<Compensated>(x, v, hd);
-    }
-
-    // q += hs * dT/dp(p) with dT/dp evaluated afresh (Gould & Tobochnik eq. 3.74, the q half).
-    template <bool Compensated>
-    [[gnu::always_inline]] inline void drift(State& x, vector& v, scalar hs) {
-        if constexpr (fused_velocity) {
-            if constexpr (Compensated) {
-                increment.noalias() = hs * h.velocity(x.p);
-                add_compensated(x.q, q_error);
-            } else {
-                x.q.noalias() += hs * h.velocity(x.p);
-            }
-        } else {
-            sympl::velocity(h, x.p, v);
-            drift_with<Compensated>(x, v, hs);
-        }
-    }
-
-    // q += hs * v with v = dT/dp(p) already at hand.
-    template <bool Compensated>
-    [[gnu::always_inline]] inline void drift_with(State& x, const vector& v, scalar hs) {
-        if constexpr (Compensated) {
-            increment = hs * v;
-            add_compensated(x.q, q_error);
-        } else {
-            x.q += hs * v;
-        }
-    }
-
-    // velocity(p) returns a reference: to p itself (dT/dp = p) when run() finds velocity_is_p.
-    static constexpr bool reference_velocity = requires(const H& hh, const vector& p) {
-        { hh.velocity(p) } -> std::same_as<const vector&>;
-    };
-    // A small fixed-size state runs in registers, updated by Eigen's packet operations (docs/speed.md).
-    static constexpr bool small_fixed = State::dimension != Eigen::Dynamic && State::dimension <= 16;
-    // An analytic velocity that returns an expression (e.g. p / m) fuses into the drift.
-    static constexpr bool fused_velocity = has_velocity_value<H, vector> && !has_velocity_into<H, vector>;
-
-    H h;
     table method;
     stepper_options options;
     std::vector<scalar> weights;             // the canonical sub-steps' weights, s0 first
     std::vector<scalar> sizes, body, rotated;  // sub-step sizes of the current run
-    bool first_is_kick = true, last_is_kick = true, joined = false, velocity_is_p = false;
+    bool first_is_kick = true, last_is_kick = true, joined = false;
     std::size_t kicks = 0, drifts = 0;
     vector force, velocity;
     vector p_before_last_kick;    // small fixed-size states of kick-first joined tables (run_loop)
     bool p_before_valid = false;  // p_before_last_kick is that of the state the last run returned
-    vector q_error, p_error, increment, sum;  // compensated summation only
     bool force_fresh = false, velocity_fresh = false;  // force / velocity are those of the state the last run returned
     std::uint64_t forces_counted = 0, velocities_counted = 0, derivatives_counted = 0;
     std::vector<substep> gradient_ops;  // a force-gradient table's sub-steps (empty for other tables)

@@ -53,8 +53,9 @@ public:
 
     // n consecutive steps: forces and velocities carried over between steps,
     // and a step's last sub-step joined with the next step's first when they
-    // are of one kind (the result differs from n calls of step() by rounding
-    // only; tables that start and end with different kinds: bit for bit).
+    // are of one kind. n calls of step() give the same numbers where nothing
+    // is joined, and on small fixed-size states of kick-first tables (which
+    // join across calls); otherwise they differ by rounding.
     [[gnu::always_inline]] inline void steps(State& x, scalar dt, std::size_t n) {
         check_step(dt);
         const int kept = kept_force_matches(x);
