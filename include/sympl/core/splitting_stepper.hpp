@@ -8,8 +8,8 @@
 // the last force of a step serves the next (leapfrog KDK costs one force per
 // step). Across calls the stepper keeps its last force with the q it belongs
 // to, as Odeint's velocity_verlet keeps its acceleration, and reuses it when
-// the next call is handed that q bit for bit: a loop of step() costs what
-// steps(n) costs. The check reads q and p once and evaluates nothing; a state
+// the next call is handed that q bit for bit: a loop of step() evaluates the
+// forces steps(n) does. The check reads q and p once, evaluates nothing; a state
 // changed in any bit gets a fresh force, and state_changed() drops the kept
 // force when something else the force depends on has changed (a parameter the
 // Hamiltonian refers to). The workspace is sized once; no step allocates.
