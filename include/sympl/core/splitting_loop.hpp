@@ -183,9 +183,10 @@ struct splitting_loop : substep_updates<H, State> {
 
     // n steps. have_force: `force` is F(x.q), so a first kick takes it as it
     // is; have_velocity: likewise `velocity` for a first drift; join (with
-    // have_force, where p_before_last_kick is valid): x is the state the last
-    // run returned, whose last kick is joined with this run's first as in
-    // steps(n). Small fixed-size states run in locals kept in registers.
+    // have_force, where p_before_last_kick is valid and dt is p_before_dt): x
+    // is the state the last run returned, whose last kick is joined with this
+    // run's first as in steps(n). Small fixed-size states run in locals kept
+    // in registers.
     [[gnu::always_inline]] inline void run(State& x, scalar dt, std::size_t n, bool have_force, bool have_velocity,
                                            bool join = false) {
         if (n == 0) {
@@ -254,6 +255,7 @@ struct splitting_loop : substep_updates<H, State> {
         if (apart) {
             p_before_last_kick = x.p;
             p_before_valid = true;
+            p_before_dt = dt;
             sympl::force(h, x.q, f);
             this->template kick<Compensated>(x, f, weights[L - 1] * dt);
         }
@@ -366,6 +368,7 @@ struct splitting_loop : substep_updates<H, State> {
     vector force, velocity;
     vector p_before_last_kick;    // small fixed-size states of kick-first joined tables (run_loop)
     bool p_before_valid = false;  // p_before_last_kick is that of the state the last run returned
+    scalar p_before_dt{};         // and the step size of that run: only a run of the same dt joins
     bool force_fresh = false, velocity_fresh = false;  // force / velocity are those of the state the last run returned
     std::uint64_t forces_counted = 0, velocities_counted = 0, derivatives_counted = 0;
     std::vector<substep> gradient_ops;  // a force-gradient table's sub-steps (empty for other tables)

@@ -60,7 +60,7 @@ public:
         check_step(dt);
         const int kept = kept_force_matches(x);
         if (kept == 0) check_state_once_sized(x);
-        loop_.run(x, dt, n, kept > 0, false, kept == 2);
+        loop_.run(x, dt, n, kept > 0, false, kept == 2 && dt == loop_.p_before_dt);
         keep_force(x);
     }
 
