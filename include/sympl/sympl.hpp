@@ -15,6 +15,7 @@
 #include "core/quadratic_kinetic.hpp"
 #include "core/reverse_mode.hpp"
 #include "core/reverse_tape.hpp"
+#include "core/splitting_loop.hpp"
 #include "core/splitting_stepper.hpp"
 #include "core/table.hpp"
 #include "core/time_span.hpp"

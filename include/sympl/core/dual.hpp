@@ -305,14 +305,28 @@ template <class T, int N> bool isfinite(const dual<T, N>& a) {
 
 }  // namespace sympl
 
+namespace sympl::detail {
+// What Eigen's NumTraits asks of a number type built on T (dual numbers, SIMD
+// batches): the type itself as Real and its kin, T's limits converted to it.
+// A specialisation adds its costs.
+template <class Number, class T>
+struct number_traits_over : Eigen::NumTraits<T> {
+    using Real = Number;
+    using NonInteger = Number;
+    using Nested = Number;
+    using Literal = Number;
+    static Real epsilon() { return Real(Eigen::NumTraits<T>::epsilon()); }
+    static Real dummy_precision() { return Real(Eigen::NumTraits<T>::dummy_precision()); }
+    static Real highest() { return Real(Eigen::NumTraits<T>::highest()); }
+    static Real lowest() { return Real(Eigen::NumTraits<T>::lowest()); }
+    static int digits10() { return Eigen::NumTraits<T>::digits10(); }
+};
+}  // namespace sympl::detail
+
 // Eigen needs to know how a dual behaves as a matrix scalar.
 namespace Eigen {
 template <class T, int N>
-struct NumTraits<sympl::dual<T, N>> : NumTraits<T> {
-    using Real = sympl::dual<T, N>;
-    using NonInteger = sympl::dual<T, N>;
-    using Nested = sympl::dual<T, N>;
-    using Literal = sympl::dual<T, N>;
+struct NumTraits<sympl::dual<T, N>> : sympl::detail::number_traits_over<sympl::dual<T, N>, T> {
     enum {
         IsComplex = 0,
         IsInteger = 0,
@@ -322,11 +336,6 @@ struct NumTraits<sympl::dual<T, N>> : NumTraits<T> {
         AddCost = (N + 1) * NumTraits<T>::AddCost,
         MulCost = (2 * N + 1) * NumTraits<T>::MulCost
     };
-    static Real epsilon() { return Real(NumTraits<T>::epsilon()); }
-    static Real dummy_precision() { return Real(NumTraits<T>::dummy_precision()); }
-    static Real highest() { return Real(NumTraits<T>::highest()); }
-    static Real lowest() { return Real(NumTraits<T>::lowest()); }
-    static int digits10() { return NumTraits<T>::digits10(); }
 };
 template <class T, int N, class U>
     requires std::is_arithmetic_v<U>

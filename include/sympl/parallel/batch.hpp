@@ -15,6 +15,8 @@
 
 #include <Eigen/Core>
 
+#include "../core/dual.hpp"  // detail::number_traits_over
+
 namespace sympl {
 
 // Doubles per vector register of the target the code is compiled for:
@@ -169,17 +171,8 @@ struct lanes_of<batch<T, W>> : std::integral_constant<int, W> {};
 // type whose operations cost about as much as a double's.
 namespace Eigen {
 template <class T, int W>
-struct NumTraits<sympl::batch<T, W>> : NumTraits<T> {
-    using Real = sympl::batch<T, W>;
-    using NonInteger = sympl::batch<T, W>;
-    using Nested = sympl::batch<T, W>;
-    using Literal = sympl::batch<T, W>;
+struct NumTraits<sympl::batch<T, W>> : sympl::detail::number_traits_over<sympl::batch<T, W>, T> {
     enum { IsComplex = 0, IsInteger = 0, IsSigned = 1, RequireInitialization = 1, ReadCost = 1, AddCost = 1, MulCost = 1 };
-    static Real epsilon() { return Real(NumTraits<T>::epsilon()); }
-    static Real dummy_precision() { return Real(NumTraits<T>::dummy_precision()); }
-    static Real highest() { return Real(NumTraits<T>::highest()); }
-    static Real lowest() { return Real(NumTraits<T>::lowest()); }
-    static int digits10() { return NumTraits<T>::digits10(); }
 };
 template <class T, int W, typename BinaryOp>
 struct ScalarBinaryOpTraits<sympl::batch<T, W>, T, BinaryOp> {
