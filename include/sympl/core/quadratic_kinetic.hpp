@@ -28,17 +28,19 @@ class quadratic_kinetic {
 public:
     using scalar = scalar_of<Vec>;
     using matrix = Eigen::Matrix<scalar, Eigen::Dynamic, Eigen::Dynamic>;
-    enum class form { unknown, diagonal, dense, not_quadratic };
+    // analytic: H gives its velocity, nothing to recognise; not_quadratic: dT/dp
+    // stays a gradient of T at every call (also for scalars that are not plain
+    // floating-point numbers).
+    enum class form { unknown, analytic, diagonal, dense, not_quadratic };
     static constexpr Eigen::Index dense_limit = 32;
 
     // Measures T of `h` in dimension n. Only for a T with no analytic velocity
-    // and a plain floating-point scalar: anything else is left not quadratic. A T
-    // that throws at the probes is taken as not quadratic too: the steppers then
-    // meet the error where they evaluate it.
+    // and a plain floating-point scalar. A T that throws at the probes is taken
+    // as not quadratic: the steppers then meet the error where they evaluate it.
     template <class H>
     void recognise(const H& h, Eigen::Index n) {
         dimension_ = n;
-        form_ = form::not_quadratic;
+        form_ = has_analytic_velocity<H, Vec> ? form::analytic : form::not_quadratic;
         if constexpr (!has_analytic_velocity<H, Vec> && std::is_floating_point_v<scalar>) {
             try {
                 if (n > 0) form_ = measure(h, n);

@@ -10,12 +10,14 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
 #include "error.hpp"
 #include "hamiltonian.hpp"
 #include "phase_space.hpp"
+#include "quadratic_kinetic.hpp"
 #include "table.hpp"
 
 namespace sympl {
@@ -91,7 +93,7 @@ struct substep_updates {
                 x.q.noalias() += hs * h.velocity(x.p);
             }
         } else {
-            sympl::velocity(h, x.p, v);
+            velocity_of(x.p, v);
             drift_with<Compensated>(x, v, hs);
         }
     }
@@ -116,8 +118,23 @@ struct substep_updates {
     // An analytic velocity that returns an expression (e.g. p / m) fuses into the drift.
     static constexpr bool fused_velocity = has_velocity_value<H, vector> && !has_velocity_into<H, vector>;
 
+    // dT/dp: a product by the inverse mass where T was recognised as quadratic
+    // (quadratic_kinetic.hpp, once per dimension), else the Hamiltonian's own
+    // velocity or a gradient of its generic T.
+    [[gnu::always_inline]] inline void velocity_of(const vector& p, vector& v) {
+        if constexpr (generic_kinetic) {
+            if (kinetic.applies()) {
+                kinetic.velocity(p, v);
+                return;
+            }
+        }
+        sympl::velocity(h, p, v);
+    }
+    static constexpr bool generic_kinetic = !has_analytic_velocity<H, vector> && std::is_floating_point_v<scalar>;
+
     H h;
     vector q_error, p_error, increment, sum;  // compensated summation only
+    quadratic_kinetic<vector> kinetic;
     bool velocity_is_p = false;
 };
 
@@ -348,7 +365,7 @@ struct splitting_loop : substep_updates<H, State> {
                     if (!fresh) sympl::force(h, x.q, force), ++forces_counted, fresh = true;
                     this->template kick<Compensated>(x, force, hs);
                     if (o.gradient != 0) {
-                        sympl::velocity(h, force, along);
+                        this->velocity_of(force, along);
                         force_derivative(h, x.q, along, force_change);
                         ++derivatives_counted;
                         this->template kick<Compensated>(x, force_change, 2 * static_cast<scalar>(o.gradient) * dt3);

@@ -119,6 +119,9 @@ public:
     void reset_counters() { loop_.forces_counted = loop_.velocities_counted = loop_.derivatives_counted = 0; }
 
     const H& hamiltonian() const { return loop_.h; }
+    // What the last call found T to be (quadratic_kinetic.hpp): a generic T
+    // recognised as quadratic drifts by a product with the inverse mass.
+    typename quadratic_kinetic<vector>::form kinetic_energy_form() const { return loop_.kinetic.recognised(); }
     const table& method() const { return loop_.method; }
     const stepper_options& options() const { return loop_.options; }
 
@@ -133,6 +136,7 @@ private:
     // The full check (hamiltonian.hpp): sizes, finiteness, reads in range.
     [[gnu::noinline, gnu::cold]] void check_state_once_sized(const State& x) {
         check_state(loop_.h, x, "splitting_stepper");
+        if (loop_.kinetic.dimension() != x.q.size()) loop_.kinetic.recognise(loop_.h, x.q.size());
         if (loop_.force.size() != x.q.size()) {  // once per dimension
             size_workspace(x.q.size());
             if constexpr (State::dimension == Eigen::Dynamic) loop_.check_output_sizes(x);
