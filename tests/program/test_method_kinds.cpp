@@ -138,8 +138,10 @@ TEST_CASE("method kinds: an Odeint run that blows up says at which step, from wh
     rq.dt = 1e100;
     rq.tolerance = 1e-9;
     rq.timing_repeats = 0;
-    for (const auto& [name, says] : {std::pair{"odeint_rk4", "step 1 (from t = 0 with dt = 1e+100) produced a non-finite"},
-                                     std::pair{"odeint_dopri5", "step 1 (from t = 0 with dt = 1e+98) produced a non-finite"}}) {
+    for (const auto& named_says : {std::pair{"odeint_rk4", "step 1 (from t = 0 with dt = 1e+100) produced a non-finite"},
+                                   std::pair{"odeint_dopri5", "step 1 (from t = 0 with dt = 1e+98) produced a non-finite"}}) {
+        // Not a structured binding: clang 14 cannot capture one in CAPTURE's lambda.
+        const std::string name = named_says.first, says = named_says.second;
         CAPTURE(name);
         const run_result r = p.run(*resolve_method(name, {}), rq, 0.0, 1e101, p.x0);
         CHECK_FALSE(r.stable);
