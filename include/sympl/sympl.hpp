@@ -52,6 +52,7 @@
 #include "planetary/megno_tangent.hpp"
 #include "planetary/split_coordinates.hpp"
 #include "planetary/stumpff.hpp"
+#include "planetary/test_particles.hpp"
 #include "planetary/wisdom_holman_flows.hpp"
 #include "planetary/wisdom_holman_plan.hpp"
 #include "planetary/wisdom_holman_stepper.hpp"

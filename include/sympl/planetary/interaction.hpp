@@ -48,6 +48,22 @@ struct jacobi_constants {
     S G;
 };
 
+// All bodies' positions x_j - X_N (star first, n + 1 of them) from the
+// planets' Jacobi positions (x, y, z), from the outside in:
+// X_{j-1} = X_j - (m_j / eta_j) Q_j, x_j = Q_j + X_{j-1}.
+template <class S, class T>
+void jacobi_centred_positions(const jacobi_constants<S>& c, const T* x, const T* y, const T* z, T* bx, T* by,
+                              T* bz) {
+    const std::size_t n = c.mass.size() - 1;
+    T X(0), Y(0), Z(0);  // X_{j-1} - X_N, from the outside in
+    for (std::size_t j = n; j-- > 0;) {
+        const S w = S(c.mass[j + 1]) / (c.eta[j] + S(c.mass[j + 1]));
+        X -= w * x[j], Y -= w * y[j], Z -= w * z[j];
+        bx[j + 1] = x[j] + X, by[j + 1] = y[j] + Y, bz[j + 1] = z[j] + Z;
+    }
+    bx[0] = X, by[0] = Y, bz[0] = Z;
+}
+
 // The accelerations a'_i of the Jacobi interaction at Jacobi positions (x,
 // y, z) of the planets (WH91 sec. 3; docs/planetary.md):
 //     a'_i = a_i - sum_{j < i} m_j a_j / eta_{i-1} + G M_i Q_i / |Q_i|^3,
@@ -57,13 +73,7 @@ void jacobi_accelerations(const jacobi_constants<S>& c, const T* x, const T* y, 
                           bodies_scratch<T>& b) {
     using std::sqrt;
     const std::size_t n = c.mass.size() - 1;
-    T X(0), Y(0), Z(0);  // X_{j-1} - X_N, from the outside in
-    for (std::size_t j = n; j-- > 0;) {
-        const S w = S(c.mass[j + 1]) / (c.eta[j] + S(c.mass[j + 1]));
-        X -= w * x[j], Y -= w * y[j], Z -= w * z[j];
-        b.x[j + 1] = x[j] + X, b.y[j + 1] = y[j] + Y, b.z[j + 1] = z[j] + Z;
-    }
-    b.x[0] = X, b.y[0] = Y, b.z[0] = Z;
+    jacobi_centred_positions(c, x, y, z, b.x.data(), b.y.data(), b.z.data());
     pair_accelerations(n + 1, b.x.data(), b.y.data(), b.z.data(), c.mass.data(), c.G, b.ax.data(), b.ay.data(),
                        b.az.data());
     T sx = S(c.mass[0]) * b.ax[0], sy = S(c.mass[0]) * b.ay[0], sz = S(c.mass[0]) * b.az[0];

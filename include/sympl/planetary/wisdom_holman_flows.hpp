@@ -125,6 +125,8 @@ public:
     }
 
     const Coordinates& coordinates() const { return coords_; }
+    // Q_i, v_i and the accelerations, as the test particles' kicks read them.
+    const planet_state& state() const { return state_; }
     planetary_tangent<S>& tangent() { return tangent_; }
     const planetary_tangent<S>& tangent() const { return tangent_; }
     bool finite() const { return finite_; }

@@ -6,7 +6,7 @@
 // heliocentric coordinates (Duncan, Levison & Lee 1998, AJ 116, 2067) or
 // Jacobi coordinates, chosen once at construction (split_coordinates.hpp);
 // with a symplectic corrector (corrector.hpp), a kernel (kernels.hpp) and
-// MEGNO (megno_tangent.hpp).
+// MEGNO (megno_tangent.hpp), and test particles (test_particles.hpp).
 //
 // The user's state is inertial, laid out as hamiltonians/outer_solar_system.hpp
 // (q = x_0, y_0, z_0, x_1, ...; p_i = m_i v_i). The stepper converts on the way
@@ -44,6 +44,7 @@
 #include "coordinates.hpp"
 #include "corrector.hpp"
 #include "split_coordinates.hpp"
+#include "test_particles.hpp"
 #include "wisdom_holman_flows.hpp"
 #include "wisdom_holman_plan.hpp"
 
@@ -60,7 +61,8 @@ public:
 
     // mass[0] is the star, mass[1..N] the planets (all finite and > 0), G > 0.
     wisdom_holman_stepper(std::vector<double> mass, double G, table method, wisdom_holman_options options = {})
-        : mass_(std::move(mass)), G_(G), table_(std::move(method)), options_(options), flows_(make_flows()) {
+        : mass_(std::move(mass)), G_(G), table_(std::move(method)), options_(options), flows_(make_flows()),
+          particle_flows_(make_particle_flows()) {
         const wisdom_holman_plan plan = plan_wisdom_holman(table_, options_, "wisdom_holman_stepper");
         ops_ = plan.substeps;
         lazy_ = plan.lazy_kernel;
@@ -113,6 +115,30 @@ public:
     std::vector<scalar> tangent() const { return tangent_state().values(); }
     scalar tangent_log_scale() const { return tangent_state().log_scale(); }
 
+    // Test particles (test_particles.hpp), in the inertial frame of the
+    // state: set, they are loaded with the state at the next call of steps()
+    // (the whole system loaded from it), and test_particles() holds them as
+    // of the last return. The planets' run is the same, bit for bit, with or
+    // without them.
+    void set_test_particles(test_particle_set<scalar> particles) {
+        detail::check_test_particles(particles, "wisdom_holman_stepper::set_test_particles");
+        particles_ = std::move(particles);
+        loaded_ = false;
+    }
+    const test_particle_set<scalar>& test_particles() const { return particles_; }
+    // MEGNO per test particle from now on (its tangent vector in the
+    // particle's (dQ, dv), the planets' run given); while on, steps() joins
+    // no sub-steps across steps. <Y> per particle, in test_particles()'s order.
+    void start_test_particle_megno() {
+        std::visit([](auto& p) { p.start_megno(); }, particle_flows_);
+    }
+    void stop_test_particle_megno() {
+        std::visit([](auto& p) { p.stop_megno(); }, particle_flows_);
+    }
+    std::vector<scalar> test_particle_megno() const {
+        return std::visit([](const auto& p) { return p.megno(); }, particle_flows_);
+    }
+
     // Steps per call the drivers of integrate.hpp should take at least: C
     // (4K Kepler drifts and 4K - 1 interactions) is applied at every return,
     // so chunks of 32 (8K / sub-steps per step) steps keep it under 1/32 of
@@ -131,6 +157,8 @@ private:
     using democratic_flows = wisdom_holman_flows<scalar, democratic_heliocentric_coordinates<scalar>>;
     using jacobi_flows = wisdom_holman_flows<scalar, jacobi_coordinates<scalar>>;
     using flows_type = std::variant<democratic_flows, jacobi_flows>;
+    using particle_flows_type = std::variant<test_particle_flows<scalar, democratic_heliocentric_coordinates<scalar>>,
+                                             test_particle_flows<scalar, jacobi_coordinates<scalar>>>;
 
     // The masses, G and the state's dimension checked, and the coordinates chosen: once.
     flows_type make_flows() const {
@@ -146,6 +174,23 @@ private:
         if (options_.coordinates == wh_coordinates::jacobi)
             return flows_type(std::in_place_type<jacobi_flows>, mass_, G_);
         return flows_type(std::in_place_type<democratic_flows>, mass_, G_);
+    }
+
+    particle_flows_type make_particle_flows() const {
+        if (options_.coordinates == wh_coordinates::jacobi)
+            return particle_flows_type(std::in_place_index<1>, mass_, G_);
+        return particle_flows_type(std::in_place_index<0>, mass_, G_);
+    }
+    // The test particles' flows in the coordinates of `flows`, and both together.
+    template <class Flows>
+    auto& particles_of(Flows&) {
+        using coordinates = std::decay_t<decltype(std::declval<Flows&>().coordinates())>;
+        return std::get<test_particle_flows<scalar, coordinates>>(particle_flows_);
+    }
+    template <class Flows>
+    auto with_particles(Flows& flows) {
+        auto& p = particles_of(flows);
+        return with_test_particles<Flows, std::decay_t<decltype(p)>, scalar>{flows, p};
     }
 
     template <class F>
@@ -164,20 +209,24 @@ private:
     void run(Flows& flows, State& x, scalar dt, std::size_t n) {
         load(flows, x, dt);
         const std::size_t L = ops_.size();
+        auto both = with_particles(flows);
+        auto& particles = particles_of(flows);
         // With MEGNO on, every step ends at its own end, where it is sampled.
-        const bool megno = flows.tangent().started(), join = joined_ && !megno;
+        const bool megno = flows.tangent().started(), particles_megno = particles.megno_started();
+        const bool join = joined_ && !megno && !particles_megno;
         for (std::size_t k = 0; k < n && flows.finite(); ++k) {
             for (std::size_t j = 0; j < L && flows.finite(); ++j) {
                 if (join && k > 0 && j == 0) continue;  // done with the previous step's last sub-step
                 const scalar w = (join && j == L - 1 && k + 1 < n) ? joined_weight_ : weights_[j];
                 if (ops_[j].kind == substep::kick) {
-                    if (lazy_) flows.lazy_kick(w * dt, dt);
-                    else flows.kick(w * dt);
+                    if (lazy_) both.lazy_kick(w * dt, dt);
+                    else both.kick(w * dt);
                 } else {
-                    flows.drift(w * dt);
+                    both.drift(w * dt);
                 }
             }
             if (megno && flows.finite()) flows.tangent().sample(dt);
+            if (particles_megno && flows.finite()) particles.sample(dt);
         }
         store(flows, x, dt);
     }
@@ -186,10 +235,14 @@ private:
     // run: the tangent stays.
     template <class Flows>
     void correct(Flows& flows, int direction, scalar dt) {
-        const bool paused = flows.tangent().paused();
+        auto& particles = particles_of(flows);
+        const bool paused = flows.tangent().paused(), particles_paused = particles.tangent_paused();
         flows.tangent().pause(true);
-        apply_corrector(flows, corrector_weights_, direction, dt);
+        particles.pause_tangent(true);
+        auto both = with_particles(flows);
+        apply_corrector(both, corrector_weights_, direction, dt);
         flows.tangent().pause(paused);
+        particles.pause_tangent(particles_paused);
     }
 
     static bool same(const State& a, const State& b) {
@@ -204,6 +257,7 @@ private:
         if (loaded_ && same(x, last_) && (corrector_weights_.empty() || dt == corrected_dt_)) return;
         detail::checked_finite_bodies(x, mass_, "wisdom_holman_stepper");
         flows.load(flows.coordinates().split(x));
+        particles_of(flows).load(x, particles_);
         loaded_ = true;
         if (!corrector_weights_.empty()) {
             correct(flows, -1, dt);
@@ -216,14 +270,17 @@ private:
     template <class Flows>
     void store(Flows& flows, State& x, scalar dt) {
         const bool corrected = !corrector_weights_.empty() && flows.finite();
+        auto& particles = particles_of(flows);
         auto kept = corrected ? flows.keep() : typename Flows::kept_type{};
+        auto kept_particles = corrected ? particles.keep() : decltype(particles.keep()){};
         if (corrected) correct(flows, +1, dt);
         State y = x;
         flows.store(y);
         x = flows.coordinates().join(y);
+        particles.store(x, particles_);
         last_ = x;
         loaded_ = flows.finite();
-        if (corrected) flows.restore(std::move(kept));
+        if (corrected) flows.restore(std::move(kept)), particles.restore(std::move(kept_particles));
     }
 
     std::vector<double> mass_;
@@ -231,6 +288,8 @@ private:
     table table_;
     wisdom_holman_options options_;
     flows_type flows_;
+    particle_flows_type particle_flows_;
+    test_particle_set<scalar> particles_;  // inertial, as of the last return (or as set)
     std::vector<scalar> corrector_weights_;  // c_1..c_K, empty without a corrector
     scalar corrected_dt_ = 0;                // the dt of the C^-1 applied at the last load
     std::vector<substep> ops_;

@@ -1,0 +1,394 @@
+#pragma once
+// Test particles of a Wisdom-Holman run: massless bodies moved by the star
+// and the planets and moving neither, so that the planets' run is the same,
+// bit for bit, with or without them. Each is split as a planet of mass -> 0
+// would be (docs/planetary.md, "Test particles"): in democratic heliocentric
+// coordinates (Duncan, Levison & Lee 1998, AJ 116, 2067, eq. 2-7) its
+// heliocentric position and barycentric velocity, drifted about G m_0, kicked
+// by the planets and carried by their jump; in Jacobi coordinates (Wisdom &
+// Holman 1991, AJ 102, 1528, sec. 3) the outermost body of the hierarchy, its
+// position from the centre of mass of star and planets, drifted about G m_0
+// and kicked by every body less G m_0 Q / |Q|^3. The drifts run in lanes
+// (kepler_lanes.hpp), the kicks in blocks of particles; a tangent vector per
+// particle gives its MEGNO (Cincotta & Simo 2000, A&AS 147, 205).
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "../analysis/chaos_indicator.hpp"
+#include "../core/dual.hpp"
+#include "../core/error.hpp"
+#include "coordinates.hpp"
+#include "interaction.hpp"
+#include "kepler_drift.hpp"
+#include "kepler_lanes.hpp"
+#include "kepler_tangent.hpp"
+#include "kernels.hpp"
+#include "split_coordinates.hpp"
+
+namespace sympl {
+
+// Test particles in an inertial frame (the frame of the planets' state):
+// positions and velocities, and an id that stays with each particle.
+template <class S>
+struct test_particle_set {
+    std::vector<S> x, y, z, vx, vy, vz;
+    std::vector<std::uint64_t> id;
+
+    std::size_t size() const { return x.size(); }
+    void add(const std::array<S, 3>& r, const std::array<S, 3>& v) {
+        id.push_back(id.empty() ? 0 : id.back() + 1);
+        x.push_back(r[0]), y.push_back(r[1]), z.push_back(r[2]);
+        vx.push_back(v[0]), vy.push_back(v[1]), vz.push_back(v[2]);
+    }
+    std::array<std::vector<S>*, 6> parts() { return {&x, &y, &z, &vx, &vy, &vz}; }
+    std::array<const std::vector<S>*, 6> parts() const { return {&x, &y, &z, &vx, &vy, &vz}; }
+};
+
+namespace detail {
+// Equal lengths and finite numbers, or an invalid_argument naming the particle.
+template <class S>
+void check_test_particles(const test_particle_set<S>& p, const std::string& who) {
+    const char* names[] = {"x", "y", "z", "vx", "vy", "vz"};
+    const auto parts = p.parts();
+    for (int c = 0; c < 6; ++c)
+        if (parts[std::size_t(c)]->size() != p.size() || p.id.size() != p.size())
+            throw invalid_argument(who + ": " + std::to_string(parts[std::size_t(c)]->size()) + " values in " +
+                                   names[c] + ", " + std::to_string(p.id.size()) + " ids and " +
+                                   std::to_string(p.size()) + " in x; expected one per test particle in each");
+    for (int c = 0; c < 6; ++c) {
+        for (std::size_t i = 0; i < p.size(); ++i)
+            if (!std::isfinite((*parts[std::size_t(c)])[i]))
+                throw invalid_argument(who + ": " + names[c] + " of test particle " + std::to_string(p.id[i]) +
+                                       " = " + number_text((*parts[std::size_t(c)])[i]) + "; expected a finite number");
+    }
+}
+}  // namespace detail
+
+// The flows of the Wisdom-Holman splitting on test particles, in the
+// coordinates of Coordinates (split_coordinates.hpp), reading the planets'
+// state (Q_i, v_i in those coordinates) at each kick.
+template <class S, class Coordinates>
+class test_particle_flows {
+public:
+    static constexpr bool jacobi = std::is_same_v<Coordinates, jacobi_coordinates<S>>;
+    static constexpr std::size_t block = 64;  // particles per block of a kick
+    using dual_t = dual<S, 1>;
+
+    test_particle_flows(const std::vector<double>& mass, double G)
+        : mass_(mass), coords_(mass, G), G_(S(G)), gm0_(S(G) * S(mass[0])) {
+        const std::vector<double> eta = interior_masses(mass_);
+        for (std::size_t i = 1; i < mass_.size(); ++i) {
+            eta_.push_back(S(eta[i - 1]));
+            gm_.push_back(S(G) * S(mass_[0]) * (S(eta[i]) / S(eta[i - 1])));
+        }
+        for (double m : mass_) total_mass_ += S(m);
+        // The bodies a particle feels besides its Kepler term: the planets
+        // (democratic heliocentric), or every body (Jacobi).
+        for (std::size_t k = jacobi ? 0 : 1; k < mass_.size(); ++k) source_gm_.push_back(S(G) * S(mass_[k]));
+        for (auto* v : {&sx_, &sy_, &sz_, &dsx_, &dsy_, &dsz_}) v->assign(source_gm_.size(), S(0));
+        for (auto* v : {&pax_, &pay_, &paz_}) v->assign(mass_.size() - 1, S(0));
+    }
+
+    std::size_t size() const { return q_[0].size(); }
+
+    // From particles in the inertial frame of the planets' inertial state x.
+    template <class State>
+    void load(const State& x, const test_particle_set<S>& in) {
+        const auto [origin, velocity] = frame(x);
+        const auto parts = in.parts();
+        for (std::size_t c = 0; c < 6; ++c) {
+            q_[c].resize(in.size());
+            const S shift = c < 3 ? origin[c] : velocity[c - 3];
+            for (std::size_t i = 0; i < in.size(); ++i) q_[c][i] = (*parts[c])[i] - shift;
+        }
+        if (tangent_started_) resize_tangent();
+    }
+
+    // Into `out` (ids kept), in the inertial frame of x.
+    template <class State>
+    void store(const State& x, test_particle_set<S>& out) const {
+        const auto [origin, velocity] = frame(x);
+        const auto parts = out.parts();
+        for (std::size_t c = 0; c < 6; ++c) {
+            parts[c]->resize(size());
+            const S shift = c < 3 ? origin[c] : velocity[c - 3];
+            for (std::size_t i = 0; i < size(); ++i) (*parts[c])[i] = q_[c][i] + shift;
+        }
+    }
+
+    // The flow of H_Kepler over t: every particle about G m_0, in lanes.
+    void kepler(S t) {
+        if (size() == 0) return;
+        if (tangent_on()) tangent_kepler(t);
+        const kepler_bodies<S> b{q_[0], q_[1], q_[2], q_[3], q_[4], q_[5]};
+        try {
+            fallbacks_ += kepler_drift_all<S>(b, gm0_, t);
+        } catch (const invalid_argument&) {
+            // A particle at the star or gone non-finite: the others one by
+            // one, that one made non-finite (for the caller to remove).
+            for (std::size_t i = 0; i < size(); ++i) {
+                S r[3] = {q_[0][i], q_[1][i], q_[2][i]}, v[3] = {q_[3][i], q_[4][i], q_[5][i]};
+                try {
+                    detail::kepler_drift_body(r, v, gm0_, t, std::ptrdiff_t(i));
+                } catch (const invalid_argument&) {
+                    for (int c = 0; c < 3; ++c) r[c] = v[c] = std::numeric_limits<S>::quiet_NaN();
+                }
+                for (std::size_t c = 0; c < 3; ++c) q_[c][i] = r[c], q_[c + 3][i] = v[c];
+            }
+        }
+    }
+
+    // The kick of t by the planets in state p (Q_i, v_i), after the planets'
+    // own kick: in democratic heliocentric coordinates the planets' jump
+    // first (the shift their kick gave them), then the interaction.
+    template <class Planets>
+    void kick(const Planets& p, S t) {
+        if (size() == 0) return;
+        if constexpr (!jacobi) jump(p, t);
+        sources(p[0].data(), p[1].data(), p[2].data(), sx_, sy_, sz_);
+        if (tangent_on()) tangent_kick(t, S(0));
+        accelerate(q_[0].data(), q_[1].data(), q_[2].data(), sx_, sy_, sz_, t);
+    }
+
+    // The lazy implementer's kernel (Wisdom, Holman & Touma 1996, eq. 10.6;
+    // kernels.hpp) in place of kick(t), h the step: every body, planets and
+    // particles, moved by lazy_kernel_displacement h^2 times its acceleration.
+    template <class Planets>
+    void lazy_kick(const Planets& p, S t, S h) {
+        if (size() == 0) return;
+        const std::size_t n = p[0].size();
+        const S d = static_cast<S>(lazy_kernel_displacement) * h * h;
+        coords_.accelerations(p[0].data(), p[1].data(), p[2].data(), pax_.data(), pay_.data(), paz_.data());
+        for (std::size_t i = 0; i < n; ++i)
+            pax_[i] = p[0][i] + d * pax_[i], pay_[i] = p[1][i] + d * pay_[i], paz_[i] = p[2][i] + d * paz_[i];
+        sources(p[0].data(), p[1].data(), p[2].data(), sx_, sy_, sz_);
+        sources(pax_.data(), pay_.data(), paz_.data(), dsx_, dsy_, dsz_);
+        if (tangent_on()) tangent_kick(t, h);
+        for (std::size_t c = 0; c < 3; ++c) moved_[c] = q_[c], lazy_a_[c].resize(size());
+        for (std::size_t first = 0; first < size(); first += block)
+            field(q_[0].data(), q_[1].data(), q_[2].data(), sx_, sy_, sz_, lazy_a_[0].data() + first,
+                  lazy_a_[1].data() + first, lazy_a_[2].data() + first, first, std::min(size(), first + block));
+        for (std::size_t c = 0; c < 3; ++c)
+            for (std::size_t i = 0; i < size(); ++i) moved_[c][i] += d * lazy_a_[c][i];
+        accelerate(moved_[0].data(), moved_[1].data(), moved_[2].data(), dsx_, dsy_, dsz_, t);
+    }
+
+    // The state around the corrector (the tangent is paused there).
+    std::array<std::vector<S>, 6> keep() const { return q_; }
+    void restore(std::array<std::vector<S>, 6>&& kept) { q_ = std::move(kept); }
+
+    // MEGNO per particle from now on, each tangent (dQ, dv) starting with
+    // every component 1 / sqrt(6).
+    void start_megno() {
+        tangent_started_ = true;
+        for (auto& v : dq_) v.clear();
+        megno_.clear(), log_scale_.clear();
+        resize_tangent();
+        time_ = 0;
+    }
+    void stop_megno() { tangent_started_ = false; }
+    bool megno_started() const { return tangent_started_; }
+    void pause_tangent(bool p) { paused_ = p; }
+    bool tangent_paused() const { return paused_; }
+    // <Y> per particle (NaN before the first sample).
+    std::vector<S> megno() const {
+        std::vector<S> m;
+        for (const auto& a : megno_) m.push_back(a.mean());
+        return m;
+    }
+    // One MEGNO sample per particle at the end of a step of dt (rescaled past 1e+-200).
+    void sample(S dt) {
+        time_ += dt;
+        for (std::size_t i = 0; i < size(); ++i) {
+            S norm2 = 0;
+            for (const auto& v : dq_) norm2 += v[i] * v[i];
+            megno_[i].add(time_, log_scale_[i] + std::log(norm2) / 2);
+            if (norm2 > S(1e200) || norm2 < S(1e-200)) {
+                const S f = 1 / std::sqrt(norm2);
+                for (auto& v : dq_) v[i] *= f;
+                log_scale_[i] += std::log(norm2) / 2;
+            }
+        }
+    }
+
+    std::uint64_t kepler_fallbacks() const { return fallbacks_; }
+
+private:
+    // The origin and velocity of the particles' frame in the inertial frame
+    // of x: the star (democratic heliocentric) or the centre of mass
+    // (Jacobi), and the centre of mass's velocity.
+    template <class State>
+    std::pair<std::array<S, 3>, std::array<S, 3>> frame(const State& x) const {
+        std::array<S, 3> origin{}, velocity{};
+        for (std::size_t j = 0; j < mass_.size(); ++j)
+            for (std::size_t c = 0; c < 3; ++c) {
+                const auto k = Eigen::Index(3 * j + c);
+                if (jacobi) origin[c] += S(mass_[j]) * x.q[k];
+                velocity[c] += x.p[k];
+            }
+        for (std::size_t c = 0; c < 3; ++c) {
+            origin[c] = jacobi ? origin[c] / total_mass_ : x.q[Eigen::Index(c)];
+            velocity[c] /= total_mass_;
+        }
+        return {origin, velocity};
+    }
+
+    // The democratic heliocentric jump: Q += t sum_j m_j v_j / m_0, computed
+    // as the planets' jump computes it (DLL98 eq. 7).
+    template <class Planets>
+    void jump(const Planets& p, S t) {
+        S px(0), py(0), pz(0);
+        for (std::size_t i = 0; i < p[0].size(); ++i) {
+            const S m(mass_[i + 1]);
+            px += m * p[3][i], py += m * p[4][i], pz += m * p[5][i];
+        }
+        const S s = t / S(mass_[0]);
+        for (std::size_t i = 0; i < size(); ++i) q_[0][i] += s * px, q_[1][i] += s * py, q_[2][i] += s * pz;
+    }
+
+    // The sources' positions in the particles' frame from the planets' positions.
+    void sources(const S* x, const S* y, const S* z, std::vector<S>& sx, std::vector<S>& sy,
+                 std::vector<S>& sz) const {
+        if constexpr (jacobi) {
+            const jacobi_constants<S> c{std::span<const double>(mass_), eta_.data(), gm_.data(), G_};
+            jacobi_centred_positions(c, x, y, z, sx.data(), sy.data(), sz.data());
+        } else {
+            for (std::size_t k = 0; k < sx.size(); ++k) sx[k] = x[k], sy[k] = y[k], sz[k] = z[k];
+        }
+    }
+
+    // The accelerations of particles first..last at (x, y, z) into (ax, ay, az)
+    // (from index first): sum_k G m_k (s_k - Q) / |s_k - Q|^3, and in Jacobi
+    // coordinates + G m_0 Q / |Q|^3. Source by source over a block, so that the
+    // loops over particles vectorise; the square root in a loop of its own.
+    template <class T>
+    void field(const T* x, const T* y, const T* z, const std::vector<S>& sx, const std::vector<S>& sy,
+               const std::vector<S>& sz, T* ax, T* ay, T* az, std::size_t first, std::size_t last) const {
+        using std::sqrt;
+        const std::size_t m = last - first;
+        T r2[block], r[block];
+        for (std::size_t l = 0; l < m; ++l) ax[l] = ay[l] = az[l] = T(0);
+        for (std::size_t k = 0; k < source_gm_.size(); ++k) {
+            for (std::size_t l = 0; l < m; ++l) {
+                const T dx = sx[k] - x[first + l], dy = sy[k] - y[first + l], dz = sz[k] - z[first + l];
+                r2[l] = dx * dx + dy * dy + dz * dz;
+            }
+            for (std::size_t l = 0; l < m; ++l) r[l] = sqrt(r2[l]);
+            for (std::size_t l = 0; l < m; ++l) {
+                const T f = source_gm_[k] / (r2[l] * r[l]);
+                ax[l] += f * (sx[k] - x[first + l]), ay[l] += f * (sy[k] - y[first + l]),
+                    az[l] += f * (sz[k] - z[first + l]);
+            }
+        }
+        if constexpr (jacobi) {
+            for (std::size_t l = 0; l < m; ++l)
+                r2[l] = x[first + l] * x[first + l] + y[first + l] * y[first + l] + z[first + l] * z[first + l];
+            for (std::size_t l = 0; l < m; ++l) r[l] = sqrt(r2[l]);
+            for (std::size_t l = 0; l < m; ++l) {
+                const T f = gm0_ / (r2[l] * r[l]);
+                ax[l] += f * x[first + l], ay[l] += f * y[first + l], az[l] += f * z[first + l];
+            }
+        }
+    }
+
+    // v += t a(x, y, z), block by block (x may be the lazy kernel's moved positions).
+    void accelerate(const S* x, const S* y, const S* z, const std::vector<S>& sx, const std::vector<S>& sy,
+                    const std::vector<S>& sz, S t) {
+        S ax[block], ay[block], az[block];
+        for (std::size_t first = 0; first < size(); first += block) {
+            const std::size_t last = std::min(size(), first + block);
+            field(x, y, z, sx, sy, sz, ax, ay, az, first, last);
+            for (std::size_t l = 0; l < last - first; ++l)
+                q_[3][first + l] += t * ax[l], q_[4][first + l] += t * ay[l], q_[5][first + l] += t * az[l];
+        }
+    }
+
+    bool tangent_on() const { return tangent_started_ && !paused_; }
+    void resize_tangent() {
+        const std::size_t old = megno_.size();
+        for (auto& v : dq_) v.resize(size(), S(1) / std::sqrt(S(6)));
+        megno_.resize(size()), log_scale_.resize(size(), S(0));
+        for (std::size_t i = old; i < size(); ++i) megno_[i].last_log_norm = 0;
+    }
+
+    // The tangent over a Kepler drift of t from the particles' state now.
+    void tangent_kepler(S t) {
+        for (std::size_t i = 0; i < size(); ++i) {
+            const S r[3] = {q_[0][i], q_[1][i], q_[2][i]}, v[3] = {q_[3][i], q_[4][i], q_[5][i]};
+            S dr[3] = {dq_[0][i], dq_[1][i], dq_[2][i]}, dv[3] = {dq_[3][i], dq_[4][i], dq_[5][i]};
+            try {
+                kepler_drift_tangent(r, v, dr, dv, gm0_, t);
+            } catch (const invalid_argument&) {
+                for (int c = 0; c < 3; ++c) dr[c] = dv[c] = std::numeric_limits<S>::quiet_NaN();
+            }
+            for (std::size_t c = 0; c < 3; ++c) dq_[c][i] = dr[c], dq_[c + 3][i] = dv[c];
+        }
+    }
+
+    // The tangent over a kick of t: dv += t J dQ, J the field's Jacobian
+    // (lazy_h != 0: at the lazy kernel's moved positions, along the moved tangent).
+    void tangent_kick(S t, S lazy_h) {
+        const S d = static_cast<S>(lazy_kernel_displacement) * lazy_h * lazy_h;
+        for (std::size_t i = 0; i < size(); ++i) {
+            dual_t x[3], a[3];
+            for (std::size_t c = 0; c < 3; ++c) x[c] = dual_t(q_[c][i]), x[c].grad[0] = dq_[c][i];
+            field(&x[0], &x[1], &x[2], sx_, sy_, sz_, &a[0], &a[1], &a[2], 0, 1);
+            if (lazy_h != S(0)) {
+                for (std::size_t c = 0; c < 3; ++c) x[c] += d * a[c];
+                field(&x[0], &x[1], &x[2], dsx_, dsy_, dsz_, &a[0], &a[1], &a[2], 0, 1);
+            }
+            for (std::size_t c = 0; c < 3; ++c) dq_[c + 3][i] += t * a[c].grad[0];
+        }
+    }
+
+    std::vector<double> mass_;
+    Coordinates coords_;  // the planets' accelerations for the lazy kernel
+    S G_, gm0_, total_mass_ = 0;
+    std::vector<S> eta_, gm_, source_gm_;
+    std::vector<S> sx_, sy_, sz_, dsx_, dsy_, dsz_, pax_, pay_, paz_;
+    std::array<std::vector<S>, 6> q_;  // Q, v per particle
+    std::array<std::vector<S>, 3> moved_, lazy_a_;  // the lazy kernel's moved positions, their displacement
+    std::array<std::vector<S>, 6> dq_;  // the tangent (dQ, dv)
+    std::vector<megno_accumulator<S>> megno_;
+    std::vector<S> log_scale_;
+    S time_ = 0;
+    bool tangent_started_ = false, paused_ = false;
+    std::uint64_t fallbacks_ = 0;
+};
+
+// The planets' flows and the particles' together, as the stepper and the
+// corrector run them (kick, lazy_kick, drift, kepler): the planets first,
+// the particles reading the planets' state after.
+template <class Flows, class Particles, class S>
+struct with_test_particles {
+    Flows& planets;
+    Particles& particles;
+
+    void kick(S t) {
+        planets.kick(t);
+        particles.kick(planets.state(), t);
+    }
+    void lazy_kick(S t, S h) {
+        planets.lazy_kick(t, h);
+        particles.lazy_kick(planets.state(), t, h);
+    }
+    void drift(S t) {
+        planets.drift(t);
+        particles.kepler(t);
+    }
+    void kepler(S t) {
+        planets.kepler(t);
+        particles.kepler(t);
+    }
+};
+
+}  // namespace sympl
