@@ -42,6 +42,7 @@
 #include "methods/time_transformation.hpp"
 #include "planetary/coordinates.hpp"
 #include "planetary/corrector.hpp"
+#include "planetary/encounters.hpp"
 #include "planetary/energy.hpp"
 #include "planetary/interaction.hpp"
 #include "planetary/kepler_drift.hpp"

@@ -54,6 +54,16 @@ struct test_particle_set {
 };
 
 namespace detail {
+// v less the elements marked in gone, in order (v untouched when not one per mark).
+template <class V>
+void remove_marked(V& v, const std::vector<char>& gone) {
+    if (v.size() != gone.size()) return;
+    std::size_t j = 0;
+    for (std::size_t i = 0; i < v.size(); ++i)
+        if (!gone[i]) v[j++] = v[i];
+    v.resize(j);
+}
+
 // Equal lengths and finite numbers, or an invalid_argument naming the particle.
 template <class S>
 void check_test_particles(const test_particle_set<S>& p, const std::string& who) {
@@ -110,6 +120,7 @@ public:
             const S shift = c < 3 ? origin[c] : velocity[c - 3];
             for (std::size_t i = 0; i < in.size(); ++i) q_[c][i] = (*parts[c])[i] - shift;
         }
+        id_ = in.id;
         if (tangent_started_) resize_tangent();
     }
 
@@ -123,6 +134,7 @@ public:
             const S shift = c < 3 ? origin[c] : velocity[c - 3];
             for (std::size_t i = 0; i < size(); ++i) (*parts[c])[i] = q_[c][i] + shift;
         }
+        out.id = id_;
     }
 
     // The flow of H_Kepler over t: every particle about G m_0, in lanes.
@@ -221,6 +233,37 @@ public:
     }
 
     std::uint64_t kepler_fallbacks() const { return fallbacks_; }
+
+    // The particles' Q, v (by id()), and the star's and planets' positions
+    // and velocities dQ/dt in the particles' frame, so that differences are
+    // separations and their rates: democratic heliocentric, the star at 0
+    // moving at -sum_j m_j v_j / m_0 (the jump's velocity, which every Q
+    // shares), the planets at Q_j with v_j; Jacobi, every body's x_j - X_N
+    // and its rate from the planets' Q_i and v_i (jacobi_centred_positions).
+    const std::array<std::vector<S>, 6>& state() const { return q_; }
+    const std::vector<std::uint64_t>& id() const { return id_; }
+    template <class Planets>
+    void bodies(const Planets& p, std::array<std::vector<S>, 6>& b) const {
+        const std::size_t n = p[0].size();
+        for (auto& v : b) v.assign(n + 1, S(0));
+        if constexpr (jacobi) {
+            const jacobi_constants<S> c{std::span<const double>(mass_), eta_.data(), gm_.data(), G_};
+            jacobi_centred_positions(c, p[0].data(), p[1].data(), p[2].data(), b[0].data(), b[1].data(), b[2].data());
+            jacobi_centred_positions(c, p[3].data(), p[4].data(), p[5].data(), b[3].data(), b[4].data(), b[5].data());
+        } else {
+            for (std::size_t c = 0; c < 6; ++c)
+                for (std::size_t i = 0; i < n; ++i) b[c][i + 1] = p[c][i];
+            for (std::size_t i = 0; i < n; ++i)
+                for (std::size_t c = 3; c < 6; ++c) b[c][0] -= S(mass_[i + 1]) * p[c][i] / S(mass_[0]);
+        }
+    }
+    // Removes the particles with gone[i] set, keeping the others' order.
+    void remove(const std::vector<char>& gone) {
+        for (auto& v : q_) detail::remove_marked(v, gone);
+        for (auto& v : dq_) detail::remove_marked(v, gone);
+        detail::remove_marked(megno_, gone), detail::remove_marked(log_scale_, gone);
+        detail::remove_marked(id_, gone);
+    }
 
 private:
     // The origin and velocity of the particles' frame in the inertial frame
@@ -356,6 +399,7 @@ private:
     std::vector<S> eta_, gm_, source_gm_;
     std::vector<S> sx_, sy_, sz_, dsx_, dsy_, dsz_, pax_, pay_, paz_;
     std::array<std::vector<S>, 6> q_;  // Q, v per particle
+    std::vector<std::uint64_t> id_;
     std::array<std::vector<S>, 3> moved_, lazy_a_;  // the lazy kernel's moved positions, their displacement
     std::array<std::vector<S>, 6> dq_;  // the tangent (dQ, dv)
     std::vector<megno_accumulator<S>> megno_;

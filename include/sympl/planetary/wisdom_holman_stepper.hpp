@@ -43,6 +43,7 @@
 #include "../core/table.hpp"
 #include "coordinates.hpp"
 #include "corrector.hpp"
+#include "encounters.hpp"
 #include "split_coordinates.hpp"
 #include "test_particles.hpp"
 #include "wisdom_holman_flows.hpp"
@@ -139,6 +140,17 @@ public:
         return std::visit([](const auto& p) { return p.megno(); }, particle_flows_);
     }
 
+    // Close encounters and losses of the test particles (encounters.hpp),
+    // checked after every step from now on (steps() then joins no sub-steps
+    // across steps); the time of the logs runs from `time`, advanced by dt per
+    // step. Removed particles leave test_particles() and the MEGNO list.
+    void track_encounters(encounter_options options, scalar time = 0) {
+        tracker_ = encounter_tracker<scalar>(std::move(options), mass_, G_);
+        tracker_.set_time(time);
+    }
+    const encounter_tracker<scalar>& encounters() const { return tracker_; }
+    encounter_tracker<scalar>& encounters() { return tracker_; }
+
     // Steps per call the drivers of integrate.hpp should take at least: C
     // (4K Kepler drifts and 4K - 1 interactions) is applied at every return,
     // so chunks of 32 (8K / sub-steps per step) steps keep it under 1/32 of
@@ -213,7 +225,11 @@ private:
         auto& particles = particles_of(flows);
         // With MEGNO on, every step ends at its own end, where it is sampled.
         const bool megno = flows.tangent().started(), particles_megno = particles.megno_started();
-        const bool join = joined_ && !megno && !particles_megno;
+        const bool join = joined_ && !megno && !particles_megno && !tracker_.on();
+        if (tracker_.on()) {
+            particles.bodies(flows.state(), bodies_);
+            tracker_.begin(particles.state(), bodies_);
+        }
         for (std::size_t k = 0; k < n && flows.finite(); ++k) {
             for (std::size_t j = 0; j < L && flows.finite(); ++j) {
                 if (join && k > 0 && j == 0) continue;  // done with the previous step's last sub-step
@@ -227,6 +243,11 @@ private:
             }
             if (megno && flows.finite()) flows.tangent().sample(dt);
             if (particles_megno && flows.finite()) particles.sample(dt);
+            if (tracker_.on() && flows.finite()) {
+                particles.bodies(flows.state(), bodies_);
+                tracker_.after_step(particles.state(), bodies_, particles.id(), dt, gone_);
+                if (std::find(gone_.begin(), gone_.end(), char(1)) != gone_.end()) particles.remove(gone_);
+            }
         }
         store(flows, x, dt);
     }
@@ -290,6 +311,9 @@ private:
     flows_type flows_;
     particle_flows_type particle_flows_;
     test_particle_set<scalar> particles_;  // inertial, as of the last return (or as set)
+    encounter_tracker<scalar> tracker_;
+    std::array<std::vector<scalar>, 6> bodies_;  // the tracker's bodies in the particles' frame
+    std::vector<char> gone_;
     std::vector<scalar> corrector_weights_;  // c_1..c_K, empty without a corrector
     scalar corrected_dt_ = 0;                // the dt of the C^-1 applied at the last load
     std::vector<substep> ops_;

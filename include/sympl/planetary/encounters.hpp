@@ -1,0 +1,231 @@
+#pragma once
+// Close encounters and losses of test particles (test_particles.hpp),
+// checked after every step of a Wisdom-Holman run: each particle-planet
+// pair's closest approach inside the step located on the step's cubic
+// Hermite interpolant of their separation (Hairer, Norsett & Wanner, Solving
+// ODE I, eq. II.6.7; hermite_interpolant.hpp) as the root of d.d' by Brent's
+// method (events.hpp), logged with the distance in Hill radii
+// a (m / 3 m_0)^(1/3) (Hill 1878; a the planet's distance from the star at
+// the step's end); a particle within a body's radius (at a step's end or at
+// the located approach), beyond the escape distance from the star, unbound
+// beyond the unbound distance (v^2/2 - G M / r > 0, v about the barycentre,
+// r from the star, M the total mass), or non-finite is removed and logged, never lost silently.
+// The derivation of the relative velocities in each coordinate system is in
+// docs/planetary.md ("Close encounters and losses").
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "../core/error.hpp"
+#include "../drivers/events.hpp"
+#include "test_particles.hpp"
+
+namespace sympl {
+
+struct encounter_options {
+    // Collision radius per body, star first (empty: no collisions); a
+    // particle closer than radius[k] to body k is removed.
+    std::vector<double> radius;
+    // A particle farther than this from the star is removed (escape).
+    double escape_distance = std::numeric_limits<double>::infinity();
+    // A particle farther than this from the star and unbound is removed.
+    double unbound_distance = std::numeric_limits<double>::infinity();
+    // Closest approaches within this many Hill radii of a planet are logged (0: none).
+    double log_within_hill = 0;
+};
+
+// A closest approach of a particle to planet `body` (1..N) at `time`.
+template <class S>
+struct encounter_record {
+    S time;
+    std::uint64_t particle;
+    std::size_t body;
+    S distance, hill_radii;
+};
+
+enum class loss_reason { collision, escape, unbound, non_finite };
+
+inline std::string loss_reason_name(loss_reason r) {
+    switch (r) {
+        case loss_reason::collision: return "collision";
+        case loss_reason::escape: return "escape";
+        case loss_reason::unbound: return "unbound";
+        case loss_reason::non_finite: return "non_finite";
+    }
+    return "unknown";
+}
+
+// A particle removed at `time` (the end of the step it was found in):
+// `body` and `distance` the body hit and the distance (collision), or the
+// star's distance (escape, unbound); `energy` its v^2/2 - G M / r.
+template <class S>
+struct loss_record {
+    S time;
+    std::uint64_t particle;
+    loss_reason reason;
+    std::size_t body;
+    S distance, energy;
+};
+
+namespace detail {
+// The separation d and its rate u of a pair at a step's two ends, and the
+// cubic Hermite through them in the step's fraction th (dt the step).
+template <class S>
+struct pair_step {
+    std::array<S, 3> d0, u0, d1, u1;
+    S dt;
+    std::array<S, 3> at(S th, std::array<S, 3>* rate = nullptr) const {
+        const S h00 = (1 + 2 * th) * (1 - th) * (1 - th), h10 = th * (1 - th) * (1 - th);
+        const S h01 = th * th * (3 - 2 * th), h11 = th * th * (th - 1);
+        const S g00 = 6 * th * (th - 1), g10 = (1 - th) * (1 - 3 * th), g01 = -g00, g11 = th * (3 * th - 2);
+        std::array<S, 3> p;
+        for (int c = 0; c < 3; ++c) {
+            p[c] = h00 * d0[c] + h10 * dt * u0[c] + h01 * d1[c] + h11 * dt * u1[c];
+            if (rate) (*rate)[c] = (g00 * d0[c] + g10 * dt * u0[c] + g01 * d1[c] + g11 * dt * u1[c]) / dt;
+        }
+        return p;
+    }
+    // d.d' on the interpolant (its zero from < 0 to > 0 is the closest approach).
+    S closing(S th) const {
+        std::array<S, 3> u;
+        const std::array<S, 3> p = at(th, &u);
+        return p[0] * u[0] + p[1] * u[1] + p[2] * u[2];
+    }
+};
+
+template <class S>
+S norm3(const std::array<S, 3>& a) {
+    return std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+}
+}  // namespace detail
+
+// The checks after each step, fed the particles' and the bodies' positions
+// and velocities in one frame (test_particle_flows::frame_state) at each step's end.
+template <class S>
+class encounter_tracker {
+public:
+    using arrays = std::array<std::vector<S>, 6>;
+
+    encounter_tracker() = default;
+    encounter_tracker(encounter_options options, std::vector<double> mass, double G)
+        : options_(std::move(options)), mass_(std::move(mass)), G_(S(G)) {
+        const std::string who = "encounter_options: ";
+        if (!options_.radius.empty() && options_.radius.size() != mass_.size())
+            throw invalid_argument(who + std::to_string(options_.radius.size()) + " radii for " +
+                                   std::to_string(mass_.size()) + " bodies; expected one per body (star first) or none");
+        for (std::size_t k = 0; k < options_.radius.size(); ++k)
+            if (!(options_.radius[k] >= 0) || !std::isfinite(options_.radius[k]))
+                throw invalid_argument(who + "radius of body " + std::to_string(k) + " = " +
+                                       detail::number_text(options_.radius[k]) + "; expected a finite radius >= 0");
+        for (const auto& [name, v] : {std::pair<const char*, double>{"escape_distance", options_.escape_distance},
+                                      {"unbound_distance", options_.unbound_distance},
+                                      {"log_within_hill", options_.log_within_hill}})
+            if (!(v >= 0))
+                throw invalid_argument(who + name + " = " + detail::number_text(v) + "; expected a value >= 0");
+        for (double m : mass_) total_gm_ += G_ * S(m);
+        on_ = true;
+    }
+
+    bool on() const { return on_; }
+    void set_time(S t) { time_ = t; }
+    S time() const { return time_; }
+    const std::vector<encounter_record<S>>& encounters() const { return encounters_; }
+    const std::vector<loss_record<S>>& losses() const { return losses_; }
+    void clear_logs() { encounters_.clear(), losses_.clear(); }
+
+    // The state the next step starts from.
+    void begin(const arrays& particles, const arrays& bodies) {
+        previous_ = particles;
+        previous_bodies_ = bodies;
+    }
+
+    // After a step of dt ending at particles and bodies (star first); gone[i]
+    // set for each particle removed (logged). The ends become the next step's start.
+    void after_step(const arrays& p, const arrays& b, const std::vector<std::uint64_t>& id, S dt,
+                    std::vector<char>& gone) {
+        time_ += dt;
+        const std::size_t n = p[0].size(), bodies = b[0].size();
+        gone.assign(n, 0);
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::array<S, 3> r{p[0][i] - b[0][0], p[1][i] - b[1][0], p[2][i] - b[2][0]};
+            const S star = detail::norm3(r);
+            S v2 = 0;
+            for (int c = 3; c < 6; ++c) v2 += p[std::size_t(c)][i] * p[std::size_t(c)][i];
+            const S energy = v2 / 2 - total_gm_ / star;
+            bool finite = std::isfinite(energy);
+            for (std::size_t c = 0; c < 6; ++c) finite = finite && std::isfinite(p[c][i]);
+            if (!finite) {
+                lose(gone, i, id[i], loss_reason::non_finite, 0, star, energy);
+                continue;
+            }
+            if (!options_.radius.empty() && star < S(options_.radius[0])) {
+                lose(gone, i, id[i], loss_reason::collision, 0, star, energy);
+                continue;
+            }
+            for (std::size_t k = 1; k < bodies && !gone[i]; ++k) approach(p, b, i, k, id[i], dt, energy, gone);
+            if (gone[i]) continue;
+            if (star > S(options_.escape_distance)) lose(gone, i, id[i], loss_reason::escape, 0, star, energy);
+            else if (star > S(options_.unbound_distance) && energy > 0)
+                lose(gone, i, id[i], loss_reason::unbound, 0, star, energy);
+        }
+        previous_ = p;
+        previous_bodies_ = b;
+        for (std::size_t c = 0; c < 6; ++c) detail::remove_marked(previous_[c], gone);
+    }
+
+private:
+    // Particle i and body k over the step: the closest approach located
+    // where d.d' changes sign from < 0 to > 0, logged, and a collision.
+    void approach(const arrays& p, const arrays& b, std::size_t i, std::size_t k, std::uint64_t id, S dt, S energy,
+                  std::vector<char>& gone) {
+        detail::pair_step<S> s;
+        s.dt = dt;
+        for (std::size_t c = 0; c < 3; ++c) {
+            s.d0[c] = previous_[c][i] - previous_bodies_[c][k], s.u0[c] = previous_[c + 3][i] - previous_bodies_[c + 3][k];
+            s.d1[c] = p[c][i] - b[c][k], s.u1[c] = p[c + 3][i] - b[c + 3][k];
+        }
+        const S end = detail::norm3(s.d1);
+        const S radius = options_.radius.empty() ? S(0) : S(options_.radius[k]);
+        const S hill = hill_radius(b, k);
+        const S reach = std::max(radius, S(options_.log_within_hill) * hill);
+        S closest = end;
+        const S g0 = s.closing(0), g1 = s.closing(1);
+        const S speed = std::max(detail::norm3(s.u0), detail::norm3(s.u1));
+        if (g0 < 0 && g1 > 0 && std::min(detail::norm3(s.d0), end) - speed * dt * 2 < reach) {
+            const S th = detail::brent_root([&](S t) { return s.closing(t); }, S(0), S(1), g0, g1,
+                                            S(4) * std::numeric_limits<S>::epsilon());
+            closest = detail::norm3(s.at(th));
+            if (options_.log_within_hill > 0 && closest < S(options_.log_within_hill) * hill)
+                encounters_.push_back({time_ - dt + th * dt, id, k, closest, closest / hill});
+        }
+        if (radius > 0 && std::min(closest, end) < radius)
+            lose(gone, i, id, loss_reason::collision, k, std::min(closest, end), energy);
+    }
+
+    // a (m_k / 3 m_0)^(1/3), a body k's distance from the star at the step's end.
+    S hill_radius(const arrays& b, std::size_t k) const {
+        const std::array<S, 3> r{b[0][k] - b[0][0], b[1][k] - b[1][0], b[2][k] - b[2][0]};
+        return detail::norm3(r) * std::cbrt(S(mass_[k]) / (3 * S(mass_[0])));
+    }
+
+    void lose(std::vector<char>& gone, std::size_t i, std::uint64_t id, loss_reason why, std::size_t body, S distance,
+              S energy) {
+        gone[i] = 1;
+        losses_.push_back({time_, id, why, body, distance, energy});
+    }
+
+
+    encounter_options options_;
+    std::vector<double> mass_;
+    S G_ = 0, total_gm_ = 0, time_ = 0;
+    arrays previous_, previous_bodies_;
+    std::vector<encounter_record<S>> encounters_;
+    std::vector<loss_record<S>> losses_;
+    bool on_ = false;
+};
+
+}  // namespace sympl

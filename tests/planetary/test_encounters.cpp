@@ -1,0 +1,183 @@
+// Close encounters and losses of test particles (encounters.hpp), run by the
+// Wisdom-Holman stepper on a star (m = 1, G = 1) and a planet of mass 1e-15
+// on a circular orbit a = 1, so that every body follows its Kepler orbit to
+// rounding and the true closest approach is known independently (exact
+// Kepler drifts from the start, d.d' = 0 solved by Brent's method):
+//   (a) the logged minimum distance is the true one to 1e-9 relative, where
+//       sampling the run every 100 steps misses it by more than 10x, and its
+//       Hill radii are distance / (a (m / 3)^(1/3));
+//   (b) a particle hitting the planet, one escaping and one unbound are each
+//       removed and logged with their reason and figures; the rest go on, and
+//       every particle is either still there or in the log;
+//   (c) bad options are refused, naming the value.
+#include <doctest/doctest.h>
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <sympl/methods/catalog.hpp>
+#include <sympl/planetary/encounters.hpp>
+#include <sympl/planetary/kepler_drift.hpp>
+#include <sympl/planetary/wisdom_holman_stepper.hpp>
+
+namespace test_planetary_test_encounters {  // one per file: the tests build in batches (CMakeLists.txt)
+
+using namespace sympl;
+
+namespace {
+using State = phase_space<double>;
+using V3 = Eigen::Vector3d;
+constexpr double planet_mass = 1e-15;
+
+// Star at rest at the origin, the planet at (1, 0, 0) moving at (0, 1, 0).
+State system_start() {
+    State x(6);
+    x.q.setZero(), x.p.setZero();
+    x.q[3] = 1;
+    x.p[4] = planet_mass;
+    x.p[1] = -planet_mass;
+    return x;
+}
+
+// Position and velocity at time t of a body starting at (r, v) about GM = 1.
+std::pair<V3, V3> kepler_at(V3 r, V3 v, double t) {
+    if (t != 0) kepler_drift(r, v, 1.0, t);
+    return {r, v};
+}
+
+// A particle passing `miss` above the planet (along z) at time t_near, with
+// in-plane velocity `speed` times the circular one at angle `turn` to the
+// planet's: its start, found by drifting back from there.
+std::pair<V3, V3> flyby(double t_near, double miss, double speed, double turn) {
+    const V3 p(std::cos(t_near), std::sin(t_near), 0), u(-std::sin(t_near), std::cos(t_near), 0);
+    const V3 r = p + V3(0, 0, miss);
+    const V3 v = speed * (std::cos(turn) * u + std::sin(turn) * p);
+    return kepler_at(r, v, -t_near);
+}
+
+test_particle_set<double> one(const std::pair<V3, V3>& rv) {
+    test_particle_set<double> s;
+    s.add({rv.first[0], rv.first[1], rv.first[2]}, {rv.second[0], rv.second[1], rv.second[2]});
+    return s;
+}
+
+// The true closest approach of particle (r, v) to the planet within [t0, t1]
+// (one minimum there): exact drifts from the start, d.d' = 0 by Brent.
+double true_minimum(const std::pair<V3, V3>& particle, double t0, double t1) {
+    const auto closing = [&](double t) {
+        const auto a = kepler_at(particle.first, particle.second, t);
+        const auto b = kepler_at(V3(1, 0, 0), V3(0, 1, 0), t);
+        return (a.first - b.first).dot(a.second - b.second);
+    };
+    const double t = detail::brent_root(closing, t0, t1, closing(t0), closing(t1), 1e-15);
+    return (kepler_at(particle.first, particle.second, t).first - kepler_at(V3(1, 0, 0), V3(0, 1, 0), t).first).norm();
+}
+}  // namespace
+
+TEST_CASE("encounters: the true minimum distance to 1e-9 relative, where sampling misses it by > 10x") {
+    for (wh_coordinates coordinates : {wh_coordinates::democratic_heliocentric, wh_coordinates::jacobi}) {
+        const std::string name = coordinates_name(coordinates);
+        CAPTURE(name);
+        const double t_near = 1.2345, miss = 1e-3, dt = 0.003;
+        const auto particle = flyby(t_near, miss, 1.25, 0.4);
+        wisdom_holman_options o;
+        o.coordinates = coordinates;
+        wisdom_holman_stepper<State> wh({1.0, planet_mass}, 1.0, method("leapfrog_kdk"), o);
+        wh.set_test_particles(one(particle));
+        encounter_options e;
+        e.log_within_hill = 1e4;
+        wh.track_encounters(e);
+        State x = system_start();
+        double sampled = std::numeric_limits<double>::infinity();
+        for (int k = 0; k < 10; ++k) {
+            wh.steps(x, dt, 100);
+            const auto& p = wh.test_particles();
+            sampled = std::min(sampled, std::hypot(p.x[0] - x.q[3], p.y[0] - x.q[4], p.z[0] - x.q[5]));
+        }
+        const double truth = true_minimum(particle, t_near - 0.1, t_near + 0.1);
+        REQUIRE(wh.encounters().encounters().size() == 1);
+        const encounter_record<double> r = wh.encounters().encounters()[0];
+        const double hill = std::cbrt(planet_mass / 3);
+        MESSAGE(name << ": true minimum " << truth << " at about t = " << t_near << "; logged " << r.distance
+                     << " at t = " << r.time << " (" << r.hill_radii << " Hill radii), relative error "
+                     << std::fabs(r.distance / truth - 1) << "; sampling every 100 steps: " << sampled << " ("
+                     << sampled / truth << "x)");
+        CHECK(std::fabs(r.distance / truth - 1) < 1e-9);
+        CHECK(sampled > 10 * truth);
+        CHECK(std::fabs(r.time - t_near) < 1e-3);
+        CHECK(r.body == 1);
+        CHECK(r.particle == 0);
+        CHECK(std::fabs(r.hill_radii / (r.distance / hill) - 1) < 1e-6);  // the planet at r = 1 to rounding
+        CHECK(wh.test_particles().size() == 1);
+        CHECK(wh.encounters().losses().empty());
+    }
+}
+
+TEST_CASE("encounters: particles that collide, escape or leave unbound are removed and logged") {
+    for (wh_coordinates coordinates : {wh_coordinates::democratic_heliocentric, wh_coordinates::jacobi}) {
+        const std::string name = coordinates_name(coordinates);
+        CAPTURE(name);
+        wisdom_holman_options o;
+        o.coordinates = coordinates;
+        wisdom_holman_stepper<State> wh({1.0, planet_mass}, 1.0, method("leapfrog_kdk"), o);
+        test_particle_set<double> s;
+        const auto add = [&s](const std::pair<V3, V3>& rv) {
+            s.add({rv.first[0], rv.first[1], rv.first[2]}, {rv.second[0], rv.second[1], rv.second[2]});
+        };
+        add(flyby(0.8, 1e-3, 1.25, 0.4));                         // 0: hits (radius 2e-3) at t ~ 0.8
+        add({V3(2, 0, 0), V3(0, std::sqrt(0.5), 0)});             // 1: circular at 2, stays
+        add({V3(0, 1.5, 0), V3(-0.3, 0.95, 0)});                  // 2: bound (v^2 < 2/1.5), out past 2.5
+        add({V3(0, -1.5, 0), V3(0.3, -1.4, 0)});                  // 3: unbound (v^2 = 2.05 > 2/1.5), out
+        add({V3(-1.7, 0, 0), V3(0, -std::sqrt(1 / 1.7), 0)});     // 4: circular at 1.7, stays
+        wh.set_test_particles(s);
+        encounter_options e;
+        e.radius = {0.01, 2e-3};
+        e.escape_distance = 2.5;
+        e.unbound_distance = 2.0;
+        wh.track_encounters(e);
+        State x = system_start();
+        wh.steps(x, 0.01, 1000);
+        const auto& lost = wh.encounters().losses();
+        for (const auto& l : lost)
+            MESSAGE(name << ": particle " << l.particle << " " << loss_reason_name(l.reason) << " at t = " << l.time
+                         << ", body " << l.body << ", distance " << l.distance << ", energy " << l.energy);
+        REQUIRE(lost.size() == 3);
+        CHECK(lost[0].particle == 3);  // past 2 at t ~ 0.4
+        CHECK(lost[0].reason == loss_reason::unbound);
+        CHECK(lost[0].distance > 2.0);
+        CHECK(lost[0].energy > 0);
+        CHECK(lost[1].particle == 0);
+        CHECK(lost[1].reason == loss_reason::collision);
+        CHECK(lost[1].body == 1);
+        CHECK(lost[1].distance < 2e-3);
+        CHECK(std::fabs(lost[1].time - 0.8) < 0.02);
+        CHECK(lost[2].particle == 2);
+        CHECK(lost[2].reason == loss_reason::escape);
+        CHECK(lost[2].distance > 2.5);
+        CHECK(lost[2].energy < 0);
+        // Never lost silently: every particle is there or in the log.
+        const auto& left = wh.test_particles();
+        REQUIRE(left.size() == 2);
+        CHECK(left.id[0] == 1);
+        CHECK(left.id[1] == 4);
+        CHECK(std::fabs(std::hypot(left.x[0] - x.q[0], left.y[0] - x.q[1], left.z[0] - x.q[2]) - 2) < 1e-9);
+        CHECK(std::fabs(std::hypot(left.x[1] - x.q[0], left.y[1] - x.q[1], left.z[1] - x.q[2]) - 1.7) < 1e-9);
+    }
+}
+
+TEST_CASE("encounters: bad options are refused, naming the value") {
+    wisdom_holman_stepper<State> wh({1.0, planet_mass}, 1.0, method("leapfrog_kdk"));
+    encounter_options e;
+    e.radius = {0.1};
+    CHECK_THROWS_WITH_AS(wh.track_encounters(e), doctest::Contains("1 radii for 2 bodies"), invalid_argument);
+    e.radius = {0.1, -1};
+    CHECK_THROWS_WITH_AS(wh.track_encounters(e), doctest::Contains("radius of body 1 = -1"), invalid_argument);
+    e.radius = {};
+    e.escape_distance = std::nan("");
+    CHECK_THROWS_WITH_AS(wh.track_encounters(e), doctest::Contains("escape_distance = nan"), invalid_argument);
+}
+
+}  // namespace test_planetary_test_encounters
