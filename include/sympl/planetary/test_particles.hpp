@@ -23,6 +23,8 @@
 #include <utility>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "../analysis/chaos_indicator.hpp"
 #include "../core/dual.hpp"
 #include "../core/error.hpp"
@@ -312,11 +314,10 @@ private:
     // The accelerations of particles first..last at (x, y, z) into (ax, ay, az)
     // (from index first): sum_k G m_k (s_k - Q) / |s_k - Q|^3, and in Jacobi
     // coordinates + G m_0 Q / |Q|^3. Source by source over a block, so that the
-    // loops over particles vectorise; the square root in a loop of its own.
+    // loops over particles vectorise.
     template <class T>
     void field(const T* x, const T* y, const T* z, const std::vector<S>& sx, const std::vector<S>& sy,
                const std::vector<S>& sz, T* ax, T* ay, T* az, std::size_t first, std::size_t last) const {
-        using std::sqrt;
         const std::size_t m = last - first;
         T r2[block], r[block];
         for (std::size_t l = 0; l < m; ++l) ax[l] = ay[l] = az[l] = T(0);
@@ -325,7 +326,7 @@ private:
                 const T dx = sx[k] - x[first + l], dy = sy[k] - y[first + l], dz = sz[k] - z[first + l];
                 r2[l] = dx * dx + dy * dy + dz * dz;
             }
-            for (std::size_t l = 0; l < m; ++l) r[l] = sqrt(r2[l]);
+            square_roots(r2, r, m);
             for (std::size_t l = 0; l < m; ++l) {
                 const T f = source_gm_[k] / (r2[l] * r[l]);
                 ax[l] += f * (sx[k] - x[first + l]), ay[l] += f * (sy[k] - y[first + l]),
@@ -335,11 +336,24 @@ private:
         if constexpr (jacobi) {
             for (std::size_t l = 0; l < m; ++l)
                 r2[l] = x[first + l] * x[first + l] + y[first + l] * y[first + l] + z[first + l] * z[first + l];
-            for (std::size_t l = 0; l < m; ++l) r[l] = sqrt(r2[l]);
+            square_roots(r2, r, m);
             for (std::size_t l = 0; l < m; ++l) {
                 const T f = gm0_ / (r2[l] * r[l]);
                 ax[l] += f * x[first + l], ay[l] += f * y[first + l], az[l] += f * z[first + l];
             }
+        }
+    }
+
+    // r = sqrt(r2) over m values: for S by Eigen's packet square root, which
+    // vectorises (std::sqrt's loop does not: it keeps a branch to set errno).
+    template <class T>
+    static void square_roots(const T* r2, T* r, std::size_t m) {
+        if constexpr (std::is_same_v<T, S>) {
+            using array = Eigen::Array<S, Eigen::Dynamic, 1>;
+            Eigen::Map<array>(r, Eigen::Index(m)) = Eigen::Map<const array>(r2, Eigen::Index(m)).sqrt();
+        } else {
+            using std::sqrt;
+            for (std::size_t l = 0; l < m; ++l) r[l] = sqrt(r2[l]);
         }
     }
 
