@@ -9,7 +9,9 @@
 //   (b) a particle hitting the planet, one escaping and one unbound are each
 //       removed and logged with their reason and figures; the rest go on, and
 //       every particle is either still there or in the log;
-//   (c) bad options are refused, naming the value.
+//   (c) with a corrector and per-particle MEGNO, a removed particle's MEGNO
+//       goes with it and the log's time runs from the time given;
+//   (d) bad options are refused, naming the value.
 #include <doctest/doctest.h>
 
 #include <array>
@@ -166,6 +168,32 @@ TEST_CASE("encounters: particles that collide, escape or leave unbound are remov
         CHECK(std::fabs(std::hypot(left.x[0] - x.q[0], left.y[0] - x.q[1], left.z[0] - x.q[2]) - 2) < 1e-9);
         CHECK(std::fabs(std::hypot(left.x[1] - x.q[0], left.y[1] - x.q[1], left.z[1] - x.q[2]) - 1.7) < 1e-9);
     }
+}
+
+TEST_CASE("encounters: with a corrector and MEGNO, a removed particle's MEGNO goes with it") {
+    wisdom_holman_options o;
+    o.corrector_order = 5;
+    wisdom_holman_stepper<State> wh({1.0, planet_mass}, 1.0, method("leapfrog_kdk"), o);
+    test_particle_set<double> s;
+    for (const auto& rv : {flyby(0.5, 1e-3, 1.25, 0.4), std::pair<V3, V3>{V3(2, 0, 0), V3(0, std::sqrt(0.5), 0)},
+                           std::pair<V3, V3>{V3(-1.7, 0, 0), V3(0, -std::sqrt(1 / 1.7), 0)}})
+        s.add({rv.first[0], rv.first[1], rv.first[2]}, {rv.second[0], rv.second[1], rv.second[2]});
+    wh.set_test_particles(s);
+    wh.start_test_particle_megno();
+    encounter_options e;
+    e.radius = {0.01, 2e-3};
+    wh.track_encounters(e, 100.0);
+    State x = system_start();
+    for (int k = 0; k < 20; ++k) wh.steps(x, 0.01, 50);
+    REQUIRE(wh.encounters().losses().size() == 1);
+    CHECK(wh.encounters().losses()[0].particle == 0);
+    CHECK(std::fabs(wh.encounters().losses()[0].time - 100.5) < 0.02);  // the time runs from 100
+    const std::vector<double> megno = wh.test_particle_megno();
+    REQUIRE(megno.size() == 2);
+    CHECK(wh.test_particles().id[0] == 1);
+    // Circular Kepler orbits: <Y> -> 2 (their tangents grow linearly).
+    CHECK(std::fabs(megno[0] - 2) < 0.3);
+    CHECK(std::fabs(megno[1] - 2) < 0.3);
 }
 
 TEST_CASE("encounters: bad options are refused, naming the value") {
