@@ -51,6 +51,7 @@
 #include "planetary/kepler_tangent.hpp"
 #include "planetary/kernels.hpp"
 #include "planetary/megno_tangent.hpp"
+#include "planetary/orbital_elements.hpp"
 #include "planetary/split_coordinates.hpp"
 #include "planetary/stumpff.hpp"
 #include "planetary/test_particles.hpp"
