@@ -54,6 +54,7 @@
 #include "planetary/orbital_elements.hpp"
 #include "planetary/split_coordinates.hpp"
 #include "planetary/stumpff.hpp"
+#include "planetary/test_particle_megno.hpp"
 #include "planetary/test_particles.hpp"
 #include "planetary/wisdom_holman_flows.hpp"
 #include "planetary/wisdom_holman_plan.hpp"

@@ -9,8 +9,8 @@
 // Holman 1991, AJ 102, 1528, sec. 3) the outermost body of the hierarchy, its
 // position from the centre of mass of star and planets, drifted about G m_0
 // and kicked by every body less G m_0 Q / |Q|^3. The drifts run in lanes
-// (kepler_lanes.hpp), the kicks in blocks of particles; a tangent vector per
-// particle gives its MEGNO (Cincotta & Simo 2000, A&AS 147, 205).
+// (kepler_lanes.hpp), the kicks in blocks of particles; the tangents of
+// MEGNO per particle ride along (test_particle_megno.hpp).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -25,16 +25,15 @@
 
 #include <Eigen/Core>
 
-#include "../analysis/chaos_indicator.hpp"
 #include "../core/dual.hpp"
 #include "../core/error.hpp"
 #include "coordinates.hpp"
 #include "interaction.hpp"
 #include "kepler_drift.hpp"
 #include "kepler_lanes.hpp"
-#include "kepler_tangent.hpp"
 #include "kernels.hpp"
 #include "split_coordinates.hpp"
+#include "test_particle_megno.hpp"
 
 namespace sympl {
 
@@ -56,16 +55,6 @@ struct test_particle_set {
 };
 
 namespace detail {
-// v less the elements marked in gone, in order (v untouched when not one per mark).
-template <class V>
-void remove_marked(V& v, const std::vector<char>& gone) {
-    if (v.size() != gone.size()) return;
-    std::size_t j = 0;
-    for (std::size_t i = 0; i < v.size(); ++i)
-        if (!gone[i]) v[j++] = v[i];
-    v.resize(j);
-}
-
 // Equal lengths and finite numbers, or an invalid_argument naming the particle.
 template <class S>
 void check_test_particles(const test_particle_set<S>& p, const std::string& who) {
@@ -123,7 +112,7 @@ public:
             for (std::size_t i = 0; i < in.size(); ++i) q_[c][i] = (*parts[c])[i] - shift;
         }
         id_ = in.id;
-        if (tangent_started_) resize_tangent();
+        if (tangent_.started()) tangent_.resize(size());
     }
 
     // Into `out` (ids kept), in the inertial frame of x.
@@ -142,7 +131,7 @@ public:
     // The flow of H_Kepler over t: every particle about G m_0, in lanes.
     void kepler(S t) {
         if (size() == 0) return;
-        if (tangent_on()) tangent_kepler(t);
+        if (tangent_.on()) tangent_.kepler(q_, gm0_, t);
         const kepler_bodies<S> b{q_[0], q_[1], q_[2], q_[3], q_[4], q_[5]};
         try {
             fallbacks_ += kepler_drift_all<S>(b, gm0_, t);
@@ -169,7 +158,7 @@ public:
         if (size() == 0) return;
         if constexpr (!jacobi) jump(p, t);
         sources(p[0].data(), p[1].data(), p[2].data(), sx_, sy_, sz_);
-        if (tangent_on()) tangent_kick(t, S(0));
+        if (tangent_.on()) tangent_kick(t, S(0));
         accelerate(q_[0].data(), q_[1].data(), q_[2].data(), sx_, sy_, sz_, t);
     }
 
@@ -186,7 +175,7 @@ public:
             pax_[i] = p[0][i] + d * pax_[i], pay_[i] = p[1][i] + d * pay_[i], paz_[i] = p[2][i] + d * paz_[i];
         sources(p[0].data(), p[1].data(), p[2].data(), sx_, sy_, sz_);
         sources(pax_.data(), pay_.data(), paz_.data(), dsx_, dsy_, dsz_);
-        if (tangent_on()) tangent_kick(t, h);
+        if (tangent_.on()) tangent_kick(t, h);
         for (std::size_t c = 0; c < 3; ++c) moved_[c] = q_[c], lazy_a_[c].resize(size());
         for (std::size_t first = 0; first < size(); first += block)
             field(q_[0].data(), q_[1].data(), q_[2].data(), sx_, sy_, sz_, lazy_a_[0].data() + first,
@@ -200,39 +189,10 @@ public:
     std::array<std::vector<S>, 6> keep() const { return q_; }
     void restore(std::array<std::vector<S>, 6>&& kept) { q_ = std::move(kept); }
 
-    // MEGNO per particle from now on, each tangent (dQ, dv) starting with
-    // every component 1 / sqrt(6).
-    void start_megno() {
-        tangent_started_ = true;
-        for (auto& v : dq_) v.clear();
-        megno_.clear(), log_scale_.clear();
-        resize_tangent();
-        time_ = 0;
-    }
-    void stop_megno() { tangent_started_ = false; }
-    bool megno_started() const { return tangent_started_; }
-    void pause_tangent(bool p) { paused_ = p; }
-    bool tangent_paused() const { return paused_; }
-    // <Y> per particle (NaN before the first sample).
-    std::vector<S> megno() const {
-        std::vector<S> m;
-        for (const auto& a : megno_) m.push_back(a.mean());
-        return m;
-    }
-    // One MEGNO sample per particle at the end of a step of dt (rescaled past 1e+-200).
-    void sample(S dt) {
-        time_ += dt;
-        for (std::size_t i = 0; i < size(); ++i) {
-            S norm2 = 0;
-            for (const auto& v : dq_) norm2 += v[i] * v[i];
-            megno_[i].add(time_, log_scale_[i] + std::log(norm2) / 2);
-            if (norm2 > S(1e200) || norm2 < S(1e-200)) {
-                const S f = 1 / std::sqrt(norm2);
-                for (auto& v : dq_) v[i] *= f;
-                log_scale_[i] += std::log(norm2) / 2;
-            }
-        }
-    }
+    // MEGNO per particle (test_particle_megno.hpp); paused around the corrector.
+    test_particle_tangents<S>& tangents() { return tangent_; }
+    const test_particle_tangents<S>& tangents() const { return tangent_; }
+    void start_megno() { tangent_.start(size()); }
 
     std::uint64_t kepler_fallbacks() const { return fallbacks_; }
 
@@ -262,8 +222,7 @@ public:
     // Removes the particles with gone[i] set, keeping the others' order.
     void remove(const std::vector<char>& gone) {
         for (auto& v : q_) detail::remove_marked(v, gone);
-        for (auto& v : dq_) detail::remove_marked(v, gone);
-        detail::remove_marked(megno_, gone), detail::remove_marked(log_scale_, gone);
+        tangent_.remove(gone);
         detail::remove_marked(id_, gone);
     }
 
@@ -369,42 +328,15 @@ private:
         }
     }
 
-    bool tangent_on() const { return tangent_started_ && !paused_; }
-    void resize_tangent() {
-        const std::size_t old = megno_.size();
-        for (auto& v : dq_) v.resize(size(), S(1) / std::sqrt(S(6)));
-        megno_.resize(size()), log_scale_.resize(size(), S(0));
-        for (std::size_t i = old; i < size(); ++i) megno_[i].last_log_norm = 0;
-    }
-
-    // The tangent over a Kepler drift of t from the particles' state now.
-    void tangent_kepler(S t) {
-        for (std::size_t i = 0; i < size(); ++i) {
-            const S r[3] = {q_[0][i], q_[1][i], q_[2][i]}, v[3] = {q_[3][i], q_[4][i], q_[5][i]};
-            S dr[3] = {dq_[0][i], dq_[1][i], dq_[2][i]}, dv[3] = {dq_[3][i], dq_[4][i], dq_[5][i]};
-            try {
-                kepler_drift_tangent(r, v, dr, dv, gm0_, t);
-            } catch (const invalid_argument&) {
-                for (int c = 0; c < 3; ++c) dr[c] = dv[c] = std::numeric_limits<S>::quiet_NaN();
-            }
-            for (std::size_t c = 0; c < 3; ++c) dq_[c][i] = dr[c], dq_[c + 3][i] = dv[c];
-        }
-    }
-
-    // The tangent over a kick of t: dv += t J dQ, J the field's Jacobian
-    // (lazy_h != 0: at the lazy kernel's moved positions, along the moved tangent).
+    // The tangent over a kick of t (lazy_h != 0: the lazy kernel's, at the
+    // moved positions): the field on dual numbers, at the sources before and
+    // after the kernel's move.
     void tangent_kick(S t, S lazy_h) {
-        const S d = static_cast<S>(lazy_kernel_displacement) * lazy_h * lazy_h;
-        for (std::size_t i = 0; i < size(); ++i) {
-            dual_t x[3], a[3];
-            for (std::size_t c = 0; c < 3; ++c) x[c] = dual_t(q_[c][i]), x[c].grad[0] = dq_[c][i];
-            field(&x[0], &x[1], &x[2], sx_, sy_, sz_, &a[0], &a[1], &a[2], 0, 1);
-            if (lazy_h != S(0)) {
-                for (std::size_t c = 0; c < 3; ++c) x[c] += d * a[c];
-                field(&x[0], &x[1], &x[2], dsx_, dsy_, dsz_, &a[0], &a[1], &a[2], 0, 1);
-            }
-            for (std::size_t c = 0; c < 3; ++c) dq_[c + 3][i] += t * a[c].grad[0];
-        }
+        tangent_.kick(q_, t, static_cast<S>(lazy_kernel_displacement) * lazy_h * lazy_h,
+                      [this](const dual_t* x, dual_t* a, bool moved) {
+                          field(&x[0], &x[1], &x[2], moved ? dsx_ : sx_, moved ? dsy_ : sy_, moved ? dsz_ : sz_,
+                                &a[0], &a[1], &a[2], 0, 1);
+                      });
     }
 
     std::vector<double> mass_;
@@ -415,11 +347,7 @@ private:
     std::array<std::vector<S>, 6> q_;  // Q, v per particle
     std::vector<std::uint64_t> id_;
     std::array<std::vector<S>, 3> moved_, lazy_a_;  // the lazy kernel's moved positions, their displacement
-    std::array<std::vector<S>, 6> dq_;  // the tangent (dQ, dv)
-    std::vector<megno_accumulator<S>> megno_;
-    std::vector<S> log_scale_;
-    S time_ = 0;
-    bool tangent_started_ = false, paused_ = false;
+    test_particle_tangents<S> tangent_;
     std::uint64_t fallbacks_ = 0;
 };
 

@@ -134,10 +134,10 @@ public:
         std::visit([](auto& p) { p.start_megno(); }, particle_flows_);
     }
     void stop_test_particle_megno() {
-        std::visit([](auto& p) { p.stop_megno(); }, particle_flows_);
+        std::visit([](auto& p) { p.tangents().stop(); }, particle_flows_);
     }
     std::vector<scalar> test_particle_megno() const {
-        return std::visit([](const auto& p) { return p.megno(); }, particle_flows_);
+        return std::visit([](const auto& p) { return p.tangents().megno(); }, particle_flows_);
     }
 
     // Close encounters and losses of the test particles (encounters.hpp),
@@ -224,7 +224,7 @@ private:
         auto both = with_particles(flows);
         auto& particles = particles_of(flows);
         // With MEGNO on, every step ends at its own end, where it is sampled.
-        const bool megno = flows.tangent().started(), particles_megno = particles.megno_started();
+        const bool megno = flows.tangent().started(), particles_megno = particles.tangents().started();
         const bool join = joined_ && !megno && !particles_megno && !tracker_.on();
         if (tracker_.on()) {
             particles.bodies(flows.state(), bodies_);
@@ -242,7 +242,7 @@ private:
                 }
             }
             if (megno && flows.finite()) flows.tangent().sample(dt);
-            if (particles_megno && flows.finite()) particles.sample(dt);
+            if (particles_megno && flows.finite()) particles.tangents().sample(dt);
             if (tracker_.on() && flows.finite()) {
                 particles.bodies(flows.state(), bodies_);
                 tracker_.after_step(particles.state(), bodies_, particles.id(), dt, gone_);
@@ -257,13 +257,13 @@ private:
     template <class Flows>
     void correct(Flows& flows, int direction, scalar dt) {
         auto& particles = particles_of(flows);
-        const bool paused = flows.tangent().paused(), particles_paused = particles.tangent_paused();
+        const bool paused = flows.tangent().paused(), particles_paused = particles.tangents().paused();
         flows.tangent().pause(true);
-        particles.pause_tangent(true);
+        particles.tangents().pause(true);
         auto both = with_particles(flows);
         apply_corrector(both, corrector_weights_, direction, dt);
         flows.tangent().pause(paused);
-        particles.pause_tangent(particles_paused);
+        particles.tangents().pause(particles_paused);
     }
 
     static bool same(const State& a, const State& b) {
