@@ -16,8 +16,19 @@ namespace sympl::app {
 
 namespace {
 
-// "name" or {name = "name", dt = ..., tolerances = ...}
-scene_method method_by_name(const reader& r, const toml::node& n, const std::map<std::string, table>& inline_tables) {
+// Every name a method can have in this scene: for "did you mean".
+std::vector<std::string> method_names(const std::map<std::string, table>& inline_tables) {
+    std::vector<std::string> names;
+    for (const auto& [name, t] : inline_tables) names.push_back(name);
+    for (const auto& t : sympl::catalog()) names.push_back(t.name());
+    for (const auto& name : method_names_beside_tables()) names.push_back(name);
+    return names;
+}
+
+// "name" or {name = "name", dt = ..., tolerances = ...}; nullopt for an
+// unknown name (noted in the reader, which reports every one together).
+std::optional<scene_method> method_by_name(const reader& r, const toml::node& n,
+                                           const std::map<std::string, table>& inline_tables) {
     const toml::node* name_node = &n;
     const toml::table* t = n.as_table();
     if (t) {
@@ -30,12 +41,16 @@ scene_method method_by_name(const reader& r, const toml::node& n, const std::map
     try {
         m = resolve_method(name, inline_tables);
     } catch (const invalid_argument& e) {
-        r.fail(*name_node, e.what());
+        r.unknown_name(*name_node, e.what());
+        return std::nullopt;
     }
-    if (!m)
-        r.fail(*name_node, "unknown method '" + name + "'; expected a catalog name (sympl tables), an inline [[table]], "
-                           "logh(<table>), extrapolated(<table>, k), compensated(<table>), tao(<table>), "
-                           "semiexplicit(<table>), or one of: " + join(method_names_beside_tables()));
+    if (!m) {
+        r.unknown_name(*name_node, "unknown method '" + name + "'; " + did_you_mean(name, method_names(inline_tables)) +
+                                       "expected a catalog name (sympl tables), an inline [[table]], "
+                                       "logh(<table>), extrapolated(<table>, k), compensated(<table>), tao(<table>), "
+                                       "semiexplicit(<table>), or one of: " + join(method_names_beside_tables()));
+        return std::nullopt;
+    }
     scene_method sm{*m, {}, {}};
     if (t && t->get("dt")) sm.dt = r.sweep(*t->get("dt"), "dt");
     if (t && t->get("tolerances")) sm.tolerances = r.sweep(*t->get("tolerances"), "tolerances");
@@ -89,8 +104,10 @@ void read_system(const reader& r, const toml::table& doc, scene& s) {
     if (!system) r.fail(top, "missing 'system'; expected one of: " + join(system_names()));
     s.system = r.string(*system, "system");
     const auto& systems = system_names();
-    if (std::find(systems.begin(), systems.end(), s.system) == systems.end())
-        r.fail(*system, "unknown system '" + s.system + "'; expected one of: " + join(systems));
+    if (std::find(systems.begin(), systems.end(), s.system) == systems.end()) {
+        r.unknown_name(*system, "unknown system '" + s.system + "'; " + expected_one_of(s.system, systems));
+        return;  // its parameters cannot be checked; the rest of the scene can
+    }
 
     const system_entry& entry = *find_system(s.system);
     if (const toml::node* p = doc.get("parameters")) {
@@ -100,6 +117,7 @@ void read_system(const reader& r, const toml::table& doc, scene& s) {
         for (const auto& q : entry.parameters) known.insert(q.name);
         r.only_keys(*t, known, "[parameters] of " + s.system);
         for (const auto& [key, node] : *t) {
+            if (!entry.find(std::string(key.str()))) continue;  // noted by only_keys
             const parameter& q = *entry.find(std::string(key.str()));
             const double v = r.number(node, q.name);
             if (!q.accepts(v)) r.fail(node, s.system + " " + q.name + " = " + shortest(v) + "; expected " + q.expected());
@@ -135,7 +153,9 @@ void read_methods(const reader& r, const toml::table& doc, scene& s) {
     if (!ma || ma->empty()) r.fail(*methods, "'methods' must be a non-empty array of method names");
     if (ma->size() > 1000) r.fail(*methods, std::to_string(ma->size()) + " methods; expected at most 1000");
     for (const auto& m : *ma) {
-        s.methods.push_back(method_by_name(r, m, inline_tables));
+        std::optional<scene_method> named = method_by_name(r, m, inline_tables);
+        if (!named) continue;
+        s.methods.push_back(std::move(*named));
         for (std::size_t k = 0; k + 1 < s.methods.size(); ++k)
             if (s.methods[k].name == s.methods.back().name)
                 r.fail(m, "method '" + s.methods.back().name + "' is listed twice; expected each method once");
@@ -286,8 +306,11 @@ scene parse_scene(const std::string& text, const std::string& source, bool quick
     const double file_t_end = doc.get("t_end") ? r.number(*doc.get("t_end"), "t_end") : s.t_end;
     if (const toml::node* o = doc.get("output")) read_output(r, *o, s, file_t_end);
     const toml::array& methods = *doc.get("methods")->as_array();
+    // What follows needs the system and every method (by index in the file).
+    if (!find_system(s.system) || s.methods.size() != methods.size()) r.throw_unknown();
     if (const toml::node* c = doc.get("checkpoint")) read_checkpoint(r, *c, methods, s);
     if (const toml::node* e = doc.get("ensemble")) s.ensemble = read_ensemble(r, *e, s, *find_system(s.system), methods);
+    r.throw_unknown();
     return s;
 }
 

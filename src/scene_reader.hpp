@@ -9,6 +9,7 @@
 #include <toml++/toml.h>
 
 #include "format.hpp"
+#include "near_names.hpp"
 #include "scene.hpp"
 #include "systems.hpp"
 
@@ -20,22 +21,39 @@ inline std::string join(const std::vector<std::string>& v) {
     return out;
 }
 
-// Reads typed values and reports where a value is wrong.
+// Reads typed values and reports where a value is wrong. Unknown names (keys,
+// the system, methods) are collected and reported together, one line each,
+// with the first error that stops the reading or at its end (throw_unknown).
 struct reader {
     std::string source;
+    mutable std::vector<std::string> unknown{};
 
+    std::string at(const toml::source_region& where) const {
+        return source + ":" + std::to_string(where.begin.line) + ":" + std::to_string(where.begin.column) + ": ";
+    }
     [[noreturn]] void fail(const toml::source_region& where, const std::string& what) const {
-        throw scene_error(source + ":" + std::to_string(where.begin.line) + ":" + std::to_string(where.begin.column) +
-                          ": " + what);
+        std::string all;
+        for (const auto& line : unknown) all += line + "\n";
+        throw scene_error(all + at(where) + what);
     }
     [[noreturn]] void fail(const toml::node& n, const std::string& what) const { fail(n.source(), what); }
+
+    // An unknown name: noted, and the reading goes on to find the others.
+    void unknown_name(const toml::node& n, const std::string& what) const { unknown.push_back(at(n.source()) + what); }
+    void throw_unknown() const {
+        if (unknown.empty()) return;
+        std::string all;
+        for (const auto& line : unknown) all += (all.empty() ? "" : "\n") + line;
+        throw scene_error(all);
+    }
 
     // Only the listed keys: anything else is a typo the user wants to hear about.
     void only_keys(const toml::table& t, const std::set<std::string>& allowed, const std::string& where) const {
         for (const auto& [key, node] : t)
             if (!allowed.count(std::string(key.str()))) {
                 std::vector<std::string> names(allowed.begin(), allowed.end());
-                fail(node, "unknown key '" + std::string(key.str()) + "' in " + where + "; expected one of: " + join(names));
+                unknown_name(node, "unknown key '" + std::string(key.str()) + "' in " + where + "; " +
+                                       expected_one_of(std::string(key.str()), names));
             }
     }
 

@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "format.hpp"
+#include "near_names.hpp"
 #include "systems/list.hpp"
 
 namespace sympl::app {
@@ -60,7 +61,12 @@ parameter_values with_defaults(const system_entry& entry, const parameter_values
     for (const auto& p : entry.parameters) v[p.name] = p.value;
     for (const auto& [name, value] : given) {
         const parameter* p = entry.find(name);
-        if (!p) throw invalid_argument(where + ": " + entry.name + " has no parameter '" + name + "'");
+        if (!p) {
+            std::vector<std::string> names;
+            for (const auto& q : entry.parameters) names.push_back(q.name);
+            throw invalid_argument(where + ": " + entry.name + " has no parameter '" + name + "'; " +
+                                   expected_one_of(name, names));
+        }
         if (!p->accepts(value))
             throw invalid_argument(where + ": " + entry.name + " " + name + " = " + shortest(value) +
                                    "; expected " + p->expected());
@@ -72,7 +78,9 @@ parameter_values with_defaults(const system_entry& entry, const parameter_values
 problem make_problem(const std::string& system, const parameter_values& given, const std::vector<double>& q0,
                      const std::vector<double>& p0, const std::string& where) {
     const system_entry* entry = find_system(system);
-    if (!entry) throw invalid_argument(where + ": unknown system '" + system + "'");
+    if (!entry)
+        throw invalid_argument(where + ": unknown system '" + system + "'; " +
+                               expected_one_of(system, system_names()));
     problem p;
     try {
         p = entry->build(with_defaults(*entry, given, where));

@@ -3,7 +3,11 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <numbers>
+#include <vector>
 #include <fstream>
 #include <string>
 
@@ -260,6 +264,40 @@ TEST_CASE("scene: checkpoints are for methods that resume bit for bit, others ar
     // A different scene text is a different scene for its checkpoints.
     CHECK(parse_scene(head + "methods = [\"rk4\"]\n", "a.toml").text_hash !=
           parse_scene(head + "methods = [\"rk4\"] \n", "a.toml").text_hash);
+}
+
+TEST_CASE("scene: every unknown name in one pass, a line each with its place, and the nearest known names") {
+    const std::string text = "system = \"kepler\"\n"                                          // 1
+                             "parameters = {eccentricty = 0.5}\n"                            // 2
+                             "methods = [\"leapfrog_kd\", \"blanes_moan_s6\", \"rk5\"]\n"    // 3
+                             "dtt = 0.1\n"                                                   // 4
+                             "dt = 0.1\n"                                                    // 5
+                             "t_end = 1\n"                                                   // 6
+                             "[output]\n"                                                    // 7
+                             "energy_eror = true\n";                                         // 8
+    const std::string e = error_of(text);
+    std::vector<std::string> lines;
+    for (std::size_t at = 0; at <= e.size();) {
+        const std::size_t end = std::min(e.find('\n', at), e.size());
+        lines.push_back(e.substr(at, end - at));
+        at = end + 1;
+    }
+    REQUIRE(lines.size() == 5);
+    CHECK(lines[0].rfind("scene.toml:4:7: unknown key 'dtt' in the scene; did you mean 'dt'? expected one of: ", 0) == 0);
+    CHECK(lines[1].rfind("scene.toml:2:29: unknown key 'eccentricty' in [parameters] of kepler; did you mean "
+                         "'eccentricity'? expected one of: eccentricity, mu, scale", 0) == 0);
+    CHECK(lines[2].rfind("scene.toml:3:12: unknown method 'leapfrog_kd'; did you mean 'leapfrog_kdk'", 0) == 0);
+    CHECK(lines[3].rfind("scene.toml:3:45: unknown method 'rk5'; did you mean ", 0) == 0);
+    CHECK(lines[3].find("'rk4'") != std::string::npos);
+    CHECK(lines[4].rfind("scene.toml:8:15: unknown key 'energy_eror' in [output]; did you mean 'energy_error'?", 0) == 0);
+    // An unknown system: its parameters cannot be checked, the methods still are.
+    const std::string two = error_of("system = \"kepplr\"\nmethods = [\"rk5\"]\ndt = 0.1\nt_end = 1\n");
+    CHECK(two.rfind("scene.toml:1:10: unknown system 'kepplr'; did you mean 'kepler'? expected one of: ", 0) == 0);
+    CHECK(two.find("\nscene.toml:2:12: unknown method 'rk5'") != std::string::npos);
+    // An error that stops the reading still lists the unknown names found before it.
+    const std::string stopped = error_of("system = \"kepler\"\nmethods = [\"rk4\"]\ndtt = 0.1\nt_end = 1\n");
+    CHECK(stopped.rfind("scene.toml:3:7: unknown key 'dtt' in the scene; did you mean 'dt'?", 0) == 0);
+    CHECK(stopped.find("\nscene.toml:1:1: missing 'dt'") != std::string::npos);
 }
 
 }  // namespace test_program_test_scene

@@ -122,4 +122,14 @@ TEST_CASE("systems: a scene's own initial state replaces the default and drops t
     CHECK(p.energy(p.x0) == doctest::Approx(0.25 * 0.25 / 2 + 4 * 0.25 / 2));
 }
 
+TEST_CASE("systems: an unknown system or parameter gets the nearest names") {
+    CHECK_THROWS_WITH_AS(make_problem("kepplr", {}, {}, {}, "s.toml"),
+                         doctest::Contains("s.toml: unknown system 'kepplr'; did you mean 'kepler'? expected one of: "),
+                         sympl::invalid_argument);
+    CHECK_THROWS_WITH_AS(make_problem("pendulum", {{"lenght", 2}}, {}, {}, "s.toml"),
+                         "s.toml: pendulum has no parameter 'lenght'; did you mean 'length'? expected one of: mass, "
+                         "length, gravity",
+                         sympl::invalid_argument);
+}
+
 }  // namespace test_program_test_systems
