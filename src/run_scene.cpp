@@ -21,6 +21,7 @@
 #include "reference.hpp"
 #include "run_plan.hpp"
 #include "studies/study.hpp"
+#include "systems.hpp"
 #include "writers.hpp"
 
 namespace sympl::app {
@@ -165,10 +166,10 @@ private:
 
 namespace {
 
-std::vector<std::string> trajectory_header(std::size_t degrees_of_freedom) {
+// t, then the state's columns as everywhere else (q1..qn, p1..pn, or bodies' names).
+std::vector<std::string> trajectory_header(const problem& p) {
     std::vector<std::string> header{"t"};
-    for (const char* coordinate : {"q", "p"})
-        for (std::size_t i = 0; i < degrees_of_freedom; ++i) header.push_back(coordinate + std::to_string(i));
+    for (auto& column : state_columns(p.system, p.degrees_of_freedom)) header.push_back(std::move(column));
     return header;
 }
 
@@ -186,7 +187,7 @@ outcome run_one(const scene& s, const problem& p, const planned_run& planned, co
                      format_number(100 * (t - s.t0) / (s.t_end - s.t0), 3) + "%)");
         };
     std::unique_ptr<atomic_file> trajectory;
-    const std::string header = csv_line(trajectory_header(p.degrees_of_freedom));
+    const std::string header = csv_line(trajectory_header(p));
     if (s.output.writes_trajectory()) {
         trajectory = std::make_unique<atomic_file>(dir / (file_name_part(s.name) + "_" + file_name_part(m.name) +
                                                           "_trajectory.csv"));

@@ -56,6 +56,22 @@ std::vector<std::string> system_names() {
     return names;
 }
 
+std::vector<std::string> state_columns(const std::string& system, std::size_t degrees_of_freedom) {
+    const system_entry* entry = find_system(system);
+    std::vector<std::string> columns;
+    if (entry && entry->coordinate_names.size() == degrees_of_freedom) {
+        for (const auto& q : entry->coordinate_names) columns.push_back(q);
+        for (const auto& q : entry->coordinate_names) {  // "jupiter_x" -> "jupiter_px"
+            const auto cut = q.rfind('_');
+            columns.push_back(cut == std::string::npos ? "p_" + q : q.substr(0, cut + 1) + "p" + q.substr(cut + 1));
+        }
+        return columns;
+    }
+    for (const char* coordinate : {"q", "p"})
+        for (std::size_t i = 1; i <= degrees_of_freedom; ++i) columns.push_back(coordinate + std::to_string(i));
+    return columns;
+}
+
 parameter_values with_defaults(const system_entry& entry, const parameter_values& given, const std::string& where) {
     parameter_values v;
     for (const auto& p : entry.parameters) v[p.name] = p.value;

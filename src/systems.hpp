@@ -67,6 +67,8 @@ struct system_entry {
     std::function<problem(const parameter_values&)> build;  // every parameter present and valid
     bool negative_potential = false;  // V(q) < 0 everywhere (gravitation): LogH applies
     bool kinetic_not_quadratic = false;  // a separable H whose T is not quadratic in p: no RKN pairs
+    // Names of q's components in output columns ("jupiter_x"); empty: q1..qn.
+    std::vector<std::string> coordinate_names{};
 
     const parameter* find(const std::string& parameter_name) const;
 };
@@ -78,6 +80,11 @@ std::vector<std::string> system_names();
 // The entry's defaults overridden by `given`; an unknown name or a value out
 // of range is an invalid_argument naming the value and what was expected.
 parameter_values with_defaults(const system_entry& entry, const parameter_values& given, const std::string& where);
+
+// Output columns of a state, q then p, counted from 1 as in physics texts and
+// the parameters' names (q2 of henon_heiles): q1..qn, p1..pn, or by the
+// registry's names ("jupiter_x", "jupiter_px").
+std::vector<std::string> state_columns(const std::string& system, std::size_t degrees_of_freedom);
 
 // The problem for a system by name, with the given parameters and, when q0 is
 // not empty, that initial state instead of the default (which drops the exact

@@ -8,6 +8,7 @@
 #include <iomanip>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -300,6 +301,27 @@ TEST_CASE("run: output times after a resume from a checkpoint: the rows of the u
     }
     const std::string rows = whole.str();
     CHECK(std::count(rows.begin(), rows.end(), '\n') == 201);
+}
+
+TEST_CASE("run: trajectory columns count from 1 and name the planets' bodies") {
+    const fs::path dir = scratch_directory("sympl_test_run_columns");
+    fs::remove_all(dir);
+    const auto header_of = [&](const std::string& system) {
+        const scene s = parse_scene("name = \"c\"\nsystem = \"" + system + "\"\nmethods = [\"leapfrog_kdk\"]\ndt = 1\n"
+                                    "t_end = 2\n[output]\ntrajectory_every = 1\ndirectory = \"" + dir.string() + "\"\n",
+                                    "c.toml");
+        std::ostringstream out;
+        run_scene(s, true, out);
+        return read_csv(dir / "c_leapfrog_kdk_trajectory.csv").at(0);
+    };
+    CHECK(header_of("henon_heiles") == std::vector<std::string>{"t", "q1", "q2", "p1", "p2"});
+    const auto planets = header_of("outer_solar_system");
+    REQUIRE(planets.size() == 37);
+    CHECK(planets[1] == "sun_x");
+    CHECK(planets[4] == "jupiter_x");
+    CHECK(planets[19] == "sun_px");
+    CHECK(planets[36] == "pluto_pz");
+    fs::remove_all(dir);
 }
 
 }  // namespace test_program_test_run_scene

@@ -122,6 +122,17 @@ TEST_CASE("systems: a scene's own initial state replaces the default and drops t
     CHECK(p.energy(p.x0) == doctest::Approx(0.25 * 0.25 / 2 + 4 * 0.25 / 2));
 }
 
+TEST_CASE("systems: output columns count from 1, or name the bodies") {
+    CHECK(state_columns("henon_heiles", 2) == std::vector<std::string>{"q1", "q2", "p1", "p2"});
+    const auto planets = state_columns("outer_solar_system", 18);
+    REQUIRE(planets.size() == 36);
+    CHECK(planets[0] == "sun_x");
+    CHECK(planets[3] == "jupiter_x");
+    CHECK(planets[17] == "pluto_z");
+    CHECK(planets[18] == "sun_px");
+    CHECK(planets[22] == "jupiter_py");
+}
+
 TEST_CASE("systems: an unknown system or parameter gets the nearest names") {
     CHECK_THROWS_WITH_AS(make_problem("kepplr", {}, {}, {}, "s.toml"),
                          doctest::Contains("s.toml: unknown system 'kepplr'; did you mean 'kepler'? expected one of: "),
