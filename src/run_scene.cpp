@@ -173,6 +173,15 @@ std::vector<std::string> trajectory_header(const problem& p) {
     return header;
 }
 
+// <scene>_<method>_energy.csv: t and the relative energy error, every k steps.
+void write_energy_series(const run_result& r, const fs::path& file, std::vector<std::unique_ptr<atomic_file>>& files) {
+    auto out = std::make_unique<atomic_file>(file);
+    out->stream() << "t,energy_error\n" << std::setprecision(17);
+    for (const auto& [t, e] : r.energy_series) out->stream() << t << ',' << e << '\n';
+    if (!r.stable) out->stream() << "# truncated: " << r.failure << "\n";
+    files.push_back(std::move(out));
+}
+
 // One planned run: its trajectory file (staged), its checkpoints, its measures.
 outcome run_one(const scene& s, const problem& p, const planned_run& planned, const reference_state& ref,
                 const fs::path& dir, bool resume, const progress& bar, std::vector<std::unique_ptr<atomic_file>>& files,
@@ -180,6 +189,7 @@ outcome run_one(const scene& s, const problem& p, const planned_run& planned, co
     const scene_method& m = *planned.method;
     run_request rq = planned.request();
     rq.energy = s.output.energy_error && p.hamiltonian;
+    rq.energy_series_every = rq.energy ? s.output.energy_every : 0;
     rq.timing_repeats = s.checkpoint.every_steps ? 0 : 1;  // a checkpointed run is not timed a second time
     if (bar.tty)
         rq.progress = [&](double t) {
@@ -207,6 +217,8 @@ outcome run_one(const scene& s, const problem& p, const planned_run& planned, co
     if (trajectory && !o.r.stable)  // a comment line (gnuplot and CSV readers with '#' comments skip it)
         trajectory->stream() << "# truncated: " << o.r.failure << "\n";
     if (trajectory) files.push_back(std::move(trajectory));
+    if (rq.energy_series_every)
+        write_energy_series(o.r, dir / (file_name_part(s.name) + "_" + file_name_part(m.name) + "_energy.csv"), files);
     if (checkpoints) finished_checkpoints.push_back(std::move(*checkpoints));
     if (o.r.stable && ref.failure.empty()) o.final_error = relative_difference(o.r.final_state, ref.x);
     if (o.r.stable && s.output.loop_area) o.loop_area_error = loop_area_error(p, m, rq, s.t0, s.t_end);
@@ -238,6 +250,9 @@ void run_scene(const scene& s, bool json, std::ostream& out, double max_steps, b
     const problem p = problem_of(s);
     const run_plan plan = plan_runs(s, p, sweep_use::first);
     check_run_size(plan, max_steps);
+    if (s.output.energy_every && !p.hamiltonian)
+        throw scene_error(s.source + ": output.energy_every: " + s.system + " has no energy (it is not Hamiltonian); "
+                          "expected no energy_every");
     if (!s.output.times.empty() && !p.form.separable_hamiltonian)
         throw scene_error(s.source + ": output.times: " + s.system +
                           " is not a separable Hamiltonian T(p) + V(q), whose velocity and force the interpolant "
@@ -247,7 +262,7 @@ void run_scene(const scene& s, bool json, std::ostream& out, double max_steps, b
     const reference_state ref = make_reference(s, p, plan);
     // Files, when the scene asks for any, are staged and moved into place together.
     std::optional<output_set> outputs;
-    if (s.output.writes_trajectory()) outputs.emplace(s.output.directory);
+    if (s.output.writes_files()) outputs.emplace(s.output.directory);
     const fs::path dir = outputs ? outputs->staging() : fs::path(s.output.directory);
     std::vector<outcome> outcomes;
     const progress bar;  // long runs show how far they are on a terminal

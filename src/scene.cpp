@@ -217,21 +217,30 @@ std::vector<double> read_output_times(const reader& r, const toml::node& n, cons
     return times;
 }
 
+// output.trajectory_every, output.energy_every: every k-th step, k >= 1.
+std::size_t every_k_steps(const reader& r, const toml::node& n, const std::string& key, const std::string& what) {
+    const auto k = n.value<std::int64_t>();
+    if (!k || !n.is_integer() || *k < 1)
+        r.fail(n, "'" + key + "' must be an integer >= 1 (every k-th step; leave it out for no " + what + ")");
+    return std::size_t(*k);
+}
+
 void read_output(const reader& r, const toml::node& o, scene& s, double file_t_end) {
     const toml::table* t = o.as_table();
     if (!t) r.fail(o, "'output' must be a table");
-    r.only_keys(*t, {"energy_error", "trajectory_every", "times", "final_state", "loop_area", "directory"}, "[output]");
+    r.only_keys(*t, {"energy_error", "energy_every", "trajectory_every", "times", "final_state", "loop_area", "directory"},
+                "[output]");
     if (auto* n = t->get("energy_error")) s.output.energy_error = r.boolean(*n, "output.energy_error");
+    if (auto* n = t->get("energy_every")) {
+        s.output.energy_every = every_k_steps(r, *n, "output.energy_every", "energy file");
+        if (!s.output.energy_error)
+            r.fail(*n, "'output.energy_every' with energy_error = false; expected energy_error = true (or no energy_every)");
+    }
     if (auto* n = t->get("final_state")) s.output.final_state = r.boolean(*n, "output.final_state");
     if (auto* n = t->get("loop_area")) s.output.loop_area = r.boolean(*n, "output.loop_area");
     if (auto* n = t->get("directory")) s.output.directory = r.string(*n, "output.directory");
-    if (auto* n = t->get("trajectory_every")) {
-        const auto k = n->value<std::int64_t>();
-        if (!k || !n->is_integer() || *k < 1)
-            r.fail(*n, "'output.trajectory_every' must be an integer >= 1 (every k-th step; leave it out for no "
-                       "trajectory)");
-        s.output.trajectory_every = std::size_t(*k);
-    }
+    if (auto* n = t->get("trajectory_every"))
+        s.output.trajectory_every = every_k_steps(r, *n, "output.trajectory_every", "trajectory");
     if (auto* n = t->get("times")) {
         if (s.output.trajectory_every)
             r.fail(*n, "'output.times' and 'output.trajectory_every' both choose the trajectory's rows; expected one "
@@ -308,7 +317,12 @@ scene parse_scene(const std::string& text, const std::string& source, bool quick
     const toml::array& methods = *doc.get("methods")->as_array();
     // What follows needs the system and every method (by index in the file).
     if (!find_system(s.system) || s.methods.size() != methods.size()) r.throw_unknown();
-    if (const toml::node* c = doc.get("checkpoint")) read_checkpoint(r, *c, methods, s);
+    if (const toml::node* c = doc.get("checkpoint")) {
+        read_checkpoint(r, *c, methods, s);
+        if (s.output.energy_every)  // a resumed run's series would start at the checkpoint
+            r.fail(*c, "'checkpoint' with output.energy_every: a resumed run would miss the energy rows before its "
+                       "checkpoint; expected one of them");
+    }
     if (const toml::node* e = doc.get("ensemble")) s.ensemble = read_ensemble(r, *e, s, *find_system(s.system), methods);
     r.throw_unknown();
     return s;

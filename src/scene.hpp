@@ -20,7 +20,10 @@ namespace sympl::app {
 
 // What a run writes; what is not asked for is neither computed nor stored.
 struct output_spec {
-    bool energy_error = true;          // max relative energy error (and its series in `run`)
+    bool energy_error = true;          // max relative energy error
+    // `energy_every = k`: `run` writes <scene>_<method>_energy.csv, the
+    // relative energy error against time every k steps (0: no file).
+    std::size_t energy_every = 0;
     std::size_t trajectory_every = 0;  // 0: no trajectory file
     // `times = [...]` or `{from, to, count}`: trajectory rows at these times,
     // read off each step's Hermite interpolant (drivers/hermite_interpolant.hpp); the
@@ -33,6 +36,7 @@ struct output_spec {
     bool loop_area = false;            // area of a loop of initial conditions around x0, plane 0
     std::string directory = ".";       // where `sympl run` writes its files
     bool writes_trajectory() const { return trajectory_every != 0 || !times.empty() || times_dropped != 0; }
+    bool writes_files() const { return writes_trajectory() || energy_every != 0; }
 };
 inline constexpr std::size_t max_output_times = 10'000'000;
 

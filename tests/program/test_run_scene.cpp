@@ -324,4 +324,44 @@ TEST_CASE("run: trajectory columns count from 1 and name the planets' bodies") {
     fs::remove_all(dir);
 }
 
+TEST_CASE("run: energy_every writes the energy error against time, whose largest value is the summary's") {
+    const fs::path dir = scratch_directory("sympl_test_run_energy");
+    fs::remove_all(dir);
+    const scene s = parse_scene("name = \"e\"\nsystem = \"pendulum\"\nmethods = [\"leapfrog_kdk\", \"rk4\"]\ndt = 0.1\n"
+                                "t_end = 100\n[output]\nenergy_every = 10\ndirectory = \"" + dir.string() + "\"\n",
+                                "e.toml");
+    std::ostringstream out;
+    run_scene(s, true, out);
+    const auto json = nlohmann::json::parse(out.str());
+    for (int k = 0; k < 2; ++k) {
+        const std::string method = json[k]["method"];
+        CAPTURE(method);
+        const auto rows = read_csv(dir / ("e_" + method + "_energy.csv"));
+        REQUIRE(rows.size() == 1 + 101);  // header, t = 0, 1, ..., 100
+        CHECK(rows[0] == std::vector<std::string>{"t", "energy_error"});
+        CHECK(std::stod(rows[1][0]) == 0);
+        CHECK(std::stod(rows.back()[0]) == doctest::Approx(100));
+        double largest = 0;
+        for (std::size_t i = 1; i < rows.size(); ++i) largest = std::max(largest, std::stod(rows[i][1]));
+        // Sampled every 10th step: at most the max over all steps, and near it.
+        CHECK(largest <= json[k]["max_energy_error"].get<double>());
+        CHECK(largest > 0.5 * json[k]["max_energy_error"].get<double>());
+    }
+    // RK4's energy error drifts, leapfrog's stays bounded: the series shows which is which.
+    const auto series = [&](const std::string& method) {
+        std::vector<double> e;
+        for (const auto& row : read_csv(dir / ("e_" + method + "_energy.csv"))) e.push_back(row[0] == "t" ? 0 : std::stod(row[1]));
+        return e;  // e[i]: t = i - 1
+    };
+    const auto rk4 = series("rk4"), leapfrog = series("leapfrog_kdk");
+    CHECK(rk4[101] > 5 * rk4[11]);  // t = 100 against t = 10
+    const double first_half = *std::max_element(leapfrog.begin() + 1, leapfrog.begin() + 51);
+    const double second_half = *std::max_element(leapfrog.begin() + 51, leapfrog.end());
+    CHECK(second_half < 2 * first_half);
+    fs::remove_all(dir);
+    CHECK_THROWS_WITH_AS(run_scene(parse_scene("system = \"damped_oscillator\"\nmethods = [\"rk4\"]\ndt = 0.1\nt_end = 1\n"
+                                               "[output]\nenergy_every = 1\n", "d.toml"), true, out),
+                         doctest::Contains("d.toml: output.energy_every: damped_oscillator has no energy"), scene_error);
+}
+
 }  // namespace test_program_test_run_scene
