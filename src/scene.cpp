@@ -271,7 +271,7 @@ void read_checkpoint(const reader& r, const toml::node& c, const toml::array& me
 }  // namespace
 
 scene parse_scene(const std::string& text, const std::string& source, bool quick) {
-    const reader r{source};
+    reader r{source};
     toml::table doc;
     try {
         doc = toml::parse(text, source);
@@ -298,6 +298,11 @@ scene parse_scene(const std::string& text, const std::string& source, bool quick
     const toml::source_region top{{1, 1}, {1, 1}, nullptr};
     s.name = doc.get("name") ? r.string(*doc.get("name"), "name") : source;
     read_system(r, doc, s);
+    if (const system_entry* entry = find_system(s.system)) {
+        r.period = period_of(*entry, with_defaults(*entry, s.parameters, source));
+        r.period_meaning = entry->period.meaning;
+        s.period = r.period;
+    }
     read_methods(r, doc, s);
     const toml::node* dt = timing("dt");
     if (!dt) r.fail(top, "missing 'dt'; expected a step size, an array, or {from, to, count}");
@@ -307,12 +312,12 @@ scene parse_scene(const std::string& text, const std::string& source, bool quick
     if (const toml::node* t0 = doc.get("t0")) s.t0 = r.number(*t0, "t0");
     const toml::node* t_end = timing("t_end");
     if (!t_end) r.fail(top, "missing 't_end'");
-    s.t_end = r.number(*t_end, "t_end");
+    s.t_end = r.span_end(*t_end, "t_end", s.t0);
     if (!(s.t_end > s.t0) || !std::isfinite(s.t_end))
         r.fail(*t_end, "t_end = " + shortest(s.t_end) + " is not after t0 = " + shortest(s.t0) +
                            "; expected t_end > t0");
 
-    const double file_t_end = doc.get("t_end") ? r.number(*doc.get("t_end"), "t_end") : s.t_end;
+    const double file_t_end = doc.get("t_end") ? r.span_end(*doc.get("t_end"), "t_end", s.t0) : s.t_end;
     if (const toml::node* o = doc.get("output")) read_output(r, *o, s, file_t_end);
     const toml::array& methods = *doc.get("methods")->as_array();
     // What follows needs the system and every method (by index in the file).

@@ -81,6 +81,7 @@ struct scene {
     std::map<std::string, double> parameters;
     std::vector<double> q0, p0;  // empty: the system's default
     std::vector<scene_method> methods;
+    double period = 0;               // the system's characteristic period here (0: none), systems.hpp
     std::vector<double> dt;          // one step size or a sweep, largest first
     std::vector<double> tolerances;  // for odeint_dopri5 (default 1e-3 .. 1e-12)
     double t0 = 0;

@@ -56,6 +56,12 @@ std::vector<std::string> system_names() {
     return names;
 }
 
+double period_of(const system_entry& entry, const parameter_values& values) {
+    if (!entry.period.value) return 0;
+    const double t = entry.period.value(values);
+    return std::isfinite(t) && t > 0 ? t : 0;
+}
+
 std::vector<std::string> state_columns(const std::string& system, std::size_t degrees_of_freedom) {
     const system_entry* entry = find_system(system);
     std::vector<std::string> columns;

@@ -300,4 +300,38 @@ TEST_CASE("scene: every unknown name in one pass, a line each with its place, an
     CHECK(stopped.find("\nscene.toml:1:1: missing 'dt'") != std::string::npos);
 }
 
+TEST_CASE("scene: spans and steps in the system's characteristic period") {
+    const std::string head = "system = \"kepler\"\nmethods = [\"leapfrog_kdk\"]\n";
+    const double orbit = 2 * std::numbers::pi;  // Kepler at mu = 1, any eccentricity and scale
+    const scene s = parse_scene(head + "dt = {per_period = [100, 200]}\nt_end = {periods = 1000}\n", "p.toml");
+    CHECK(s.period == doctest::Approx(orbit).epsilon(1e-15));
+    CHECK(s.t_end == doctest::Approx(1000 * orbit).epsilon(1e-15));
+    REQUIRE(s.dt.size() == 2);
+    CHECK(s.dt[0] == doctest::Approx(orbit / 100).epsilon(1e-15));
+    CHECK(s.dt[1] == doctest::Approx(orbit / 200).epsilon(1e-15));
+    // A sweep of steps per period, a method's own, [quick]'s, and t0 counted from.
+    const scene q = parse_scene("system = \"kepler\"\nmethods = [{name = \"leapfrog_kdk\", dt = {per_period = 50}}]\n"
+                                "dt = {per_period = {from = 10, to = 1000, count = 3}}\nt0 = 1\nt_end = {periods = 2}\n"
+                                "[quick]\nt_end = {periods = 1}\n",
+                                "q.toml", true);
+    CHECK(q.t_end == doctest::Approx(1 + orbit));
+    REQUIRE(q.dt.size() == 3);
+    CHECK(q.dt[2] == doctest::Approx(orbit / 1000));
+    REQUIRE(q.methods[0].dt.size() == 1);
+    CHECK(q.methods[0].dt[0] == doctest::Approx(orbit / 50));
+    // The period follows the parameters: the oscillator at omega = 4.
+    const scene o = parse_scene("system = \"harmonic_oscillator\"\nparameters = {omega = 4}\nmethods = [\"rk4\"]\n"
+                                "dt = {per_period = 10}\nt_end = {periods = 3}\n", "o.toml");
+    CHECK(o.t_end == doctest::Approx(3 * std::numbers::pi / 2));
+    CHECK(o.dt[0] == doctest::Approx(std::numbers::pi / 20));
+    // No period (an unbound orbit), a misspelt key, a bad count: located, and said why.
+    CHECK(error_of(head + "parameters = {mu = 0.5}\ndt = 0.1\nt_end = {periods = 3}\n").rfind(
+              "scene.toml:5:9: 't_end' counts in the system's characteristic period, and it has none at these "
+              "parameters (orbital period", 0) == 0);
+    CHECK(error_of(head + "dt = {per_priod = 10}\nt_end = 1\n").rfind(
+              "scene.toml:3:19: unknown key 'per_priod' in 'dt'; did you mean 'per_period'?", 0) == 0);
+    CHECK(error_of(head + "dt = 0.1\nt_end = {periods = -2}\n") ==
+          "scene.toml:4:20: 't_end.periods' = -2; expected a finite number > 0");
+}
+
 }  // namespace test_program_test_scene
