@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <iostream>
 #include <iomanip>
 #include <memory>
 #include <optional>
@@ -220,7 +221,7 @@ outcome run_one(const scene& s, const problem& p, const planned_run& planned, co
     if (rq.energy_series_every)
         write_energy_series(o.r, dir / (file_name_part(s.name) + "_" + file_name_part(m.name) + "_energy.csv"), files);
     if (checkpoints) finished_checkpoints.push_back(std::move(*checkpoints));
-    if (o.r.stable && ref.failure.empty()) o.final_error = relative_difference(o.r.final_state, ref.x);
+    if (o.r.stable && !ref.x.empty()) o.final_error = relative_difference(o.r.final_state, ref.x);
     if (o.r.stable && s.output.loop_area) o.loop_area_error = loop_area_error(p, m, rq, s.t0, s.t_end);
     return o;
 }
@@ -246,9 +247,36 @@ void write_heading(const scene& s, const run_plan& plan, const reference_state& 
 
 }  // namespace
 
+// The reference a run's final errors need, said on stderr before it starts
+// when it is long, refused up front when absurd; none when the scene does not
+// ask for final errors (and has no exact solution, which is free).
+reference_state reference_for_run(const scene& s, const problem& p, const run_plan& plan, double max_steps) {
+    const bool asked = s.output.final_error.value_or(bool(p.exact));
+    if (!asked)
+        return {{}, 0,
+                p.exact ? std::string("none (output.final_error = false)")
+                        : "none (output.final_error = true measures final errors against " + p.reference_method + ")",
+                {}};
+    if (p.exact) return make_reference(s, p, plan);
+    const reference_cost cost = estimate_reference(s, p, plan);
+    const std::string what = "the reference for the final errors (" + p.reference_method + ", dt = " +
+                             shortest(plan.reference_dt) + ", " + format_number(cost.steps, 3) + " steps of " +
+                             std::to_string(p.degrees_of_freedom) + " degrees of freedom) takes about " +
+                             format_number(cost.seconds, 2) + " s";
+    const double limit = max_reference_seconds * max_steps / default_max_steps;
+    if (cost.seconds > limit)
+        throw scene_error(s.source + ": " + what + ", measured on its first steps; the limit is " +
+                          format_number(limit, 3) + " s (leave output.final_error out, or raise it with --max-steps)");
+    if (cost.seconds > announced_reference_seconds)
+        std::cerr << "sympl: " << what << ", before the methods run (leave output.final_error out to skip it)"
+                  << std::endl;
+    return make_reference(s, p, plan);
+}
+
 void run_scene(const scene& s, bool json, std::ostream& out, double max_steps, bool resume) {
     const problem p = problem_of(s);
-    const run_plan plan = plan_runs(s, p, sweep_use::first);
+    run_plan plan = plan_runs(s, p, sweep_use::first);
+    if (!s.output.final_error.value_or(bool(p.exact))) plan.reference_dt = plan.reference_steps = 0;  // none runs
     check_run_size(plan, max_steps);
     if (s.output.energy_every && !p.hamiltonian)
         throw scene_error(s.source + ": output.energy_every: " + s.system + " has no energy (it is not Hamiltonian); "
@@ -259,7 +287,7 @@ void run_scene(const scene& s, bool json, std::ostream& out, double max_steps, b
                           "between steps needs; use output.trajectory_every");
     if (resume && !s.checkpoint.every_steps)
         throw scene_error(s.source + ": --resume, but the scene has no checkpoint = {every_steps = N, file = \"...\"}");
-    const reference_state ref = make_reference(s, p, plan);
+    const reference_state ref = reference_for_run(s, p, plan, max_steps);
     // Files, when the scene asks for any, are staged and moved into place together.
     std::optional<output_set> outputs;
     if (s.output.writes_files()) outputs.emplace(s.output.directory);

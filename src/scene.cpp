@@ -228,9 +228,11 @@ std::size_t every_k_steps(const reader& r, const toml::node& n, const std::strin
 void read_output(const reader& r, const toml::node& o, scene& s, double file_t_end) {
     const toml::table* t = o.as_table();
     if (!t) r.fail(o, "'output' must be a table");
-    r.only_keys(*t, {"energy_error", "energy_every", "trajectory_every", "times", "final_state", "loop_area", "directory"},
+    r.only_keys(*t, {"energy_error", "energy_every", "final_error", "trajectory_every", "times", "final_state", "loop_area",
+                     "directory"},
                 "[output]");
     if (auto* n = t->get("energy_error")) s.output.energy_error = r.boolean(*n, "output.energy_error");
+    if (auto* n = t->get("final_error")) s.output.final_error = r.boolean(*n, "output.final_error");
     if (auto* n = t->get("energy_every")) {
         s.output.energy_every = every_k_steps(r, *n, "output.energy_every", "energy file");
         if (!s.output.energy_error)

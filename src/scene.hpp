@@ -24,6 +24,9 @@ struct output_spec {
     // `energy_every = k`: `run` writes <scene>_<method>_energy.csv, the
     // relative energy error against time every k steps (0: no file).
     std::size_t energy_every = 0;
+    // The final error against the exact solution or a reference run. Unset:
+    // where it is free (an exact solution); a reference is run only when asked.
+    std::optional<bool> final_error;
     std::size_t trajectory_every = 0;  // 0: no trajectory file
     // `times = [...]` or `{from, to, count}`: trajectory rows at these times,
     // read off each step's Hermite interpolant (drivers/hermite_interpolant.hpp); the

@@ -96,7 +96,7 @@ TEST_CASE("run: names with quotes, commas and line breaks stay inside their JSON
 TEST_CASE("run: a reference that blows up is reported as the reference's failure, and the methods still run") {
     // Stiff FPU at dt = 0.5: the long-double reference at dt = 0.125 and 0.25 blows up.
     const auto json = run_json("system = \"stiff_fpu\"\nmethods = [\"leapfrog_kdk\", \"odeint_dopri5\"]\ndt = 0.5\n"
-                               "t_end = 10\n",
+                               "t_end = 10\n[output]\nfinal_error = true\n",
                                "stiff.toml");
     REQUIRE(json.size() == 2);
     CHECK(json[0]["reference_failure"].get<std::string>().find("the reference (sofroniou_spaletta_10, long double, "
@@ -362,6 +362,30 @@ TEST_CASE("run: energy_every writes the energy error against time, whose largest
     CHECK_THROWS_WITH_AS(run_scene(parse_scene("system = \"damped_oscillator\"\nmethods = [\"rk4\"]\ndt = 0.1\nt_end = 1\n"
                                                "[output]\nenergy_every = 1\n", "d.toml"), true, out),
                          doctest::Contains("d.toml: output.energy_every: damped_oscillator has no energy"), scene_error);
+}
+
+TEST_CASE("run: the final error, and so a reference, only where it is free or asked for") {
+    const std::string pendulum = "system = \"pendulum\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.01\nt_end = 10\n";
+    const auto plain = run_json(pendulum, "p.toml");
+    CHECK_FALSE(plain[0].contains("final_error"));
+    CHECK(plain[0]["reference"].get<std::string>().rfind("none (output.final_error = true measures", 0) == 0);
+    const auto asked = run_json(pendulum + "[output]\nfinal_error = true\n", "p.toml");
+    CHECK(asked[0]["reference"].get<std::string>().rfind("sofroniou_spaletta_10, long double", 0) == 0);
+    CHECK(asked[0]["final_error"].get<double>() < 1e-3);
+    const auto exact = run_json("system = \"kepler\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.01\nt_end = 10\n", "k.toml");
+    CHECK(exact[0]["reference"] == "exact");
+    CHECK(exact[0].contains("final_error"));
+    // A reference far dearer than the limit (scaled with --max-steps) is refused before anything runs:
+    // FPU with 1000 masses, 6e4 long-double steps of Sofroniou-Spaletta 10 against a limit of 0.216 s.
+    const scene fpu = parse_scene("system = \"fpu_beta\"\nparameters = {n = 1000}\nmethods = [\"leapfrog_kdk\"]\n"
+                                  "dt = 0.1\nt_end = 1000\n[output]\nfinal_error = true\n",
+                                  "fpu.toml");
+    std::ostringstream out;
+    CHECK_THROWS_WITH_AS(run_scene(fpu, true, out, 6e4),
+                         doctest::Contains("fpu.toml: the reference for the final errors (sofroniou_spaletta_10, long "
+                                           "double, dt = 0.025, 6e+04 steps of 1000 degrees of freedom) takes about "),
+                         scene_error);
+    CHECK(out.str().empty());
 }
 
 }  // namespace test_program_test_run_scene
