@@ -38,6 +38,11 @@ struct outcome {
     double loop_area_error = -1;
 };
 
+// An error of order one: the run has no correct digit (scene.hpp).
+bool error_order_one(const outcome& o) {
+    return o.final_error >= order_one_error || o.r.max_energy_error >= order_one_error;
+}
+
 nlohmann::json as_json(const scene& s, const outcome& o, const reference_state& ref) {
     const run_result& r = o.r;
     nlohmann::json j = {{"scene", s.name}, {"method", o.method->name}, {"status", r.stable ? "stable" : "unstable"}};
@@ -51,6 +56,7 @@ nlohmann::json as_json(const scene& s, const outcome& o, const reference_state& 
     if (r.max_energy_error >= 0) j["max_energy_error"] = r.max_energy_error;
     if (o.final_error >= 0) j["final_error"] = o.final_error;
     if (o.loop_area_error >= 0) j["loop_area_error"] = o.loop_area_error;
+    if (r.stable) j["error_order_one"] = error_order_one(o);
     j["reference"] = ref.kind;
     if (!ref.failure.empty()) j["reference_failure"] = ref.failure;
     j["seconds"] = std::max(r.seconds, 0.0);
@@ -73,6 +79,9 @@ std::string as_text(const scene& s, const outcome& o) {
       << (o.final_error >= 0 ? format_number(o.final_error, 3) : "-") << "   "
       << (r.seconds >= 0 ? format_number(r.seconds * 1e3, 3) + " ms" : std::string("(not timed)"));
     if (o.loop_area_error >= 0) l << "   loop area error " << format_number(o.loop_area_error, 3);
+    if (error_order_one(o))
+        l << "\n    ^ ERROR OF ORDER ONE (>= " << format_number(order_one_error) << "): no correct digit, not a result; "
+          << "a smaller dt";
     if (s.output.final_state) {
         l << "\n    final state:";
         for (double v : r.final_state) l << " " << format_number(v, 17);
@@ -228,10 +237,15 @@ outcome run_one(const scene& s, const problem& p, const planned_run& planned, co
 
 // The summary's first lines: what ran, against which reference; a sweep says
 // which of its values `sympl run` takes.
+// Times and steps as the scene wrote them (shortest: 0.05, not 0.050000000000000003);
+// a tolerance only where an adaptive method uses one.
 void write_heading(const scene& s, const run_plan& plan, const reference_state& ref, std::ostream& out) {
-    out << s.name << ": " << s.system << ", t = " << format_number(s.t0, 17) << " .. " << format_number(s.t_end, 17)
-        << ", dt = " << format_number(s.dt.front(), 17) << " (dopri5 tolerance " << format_number(s.tolerances.front())
-        << "), reference: " << ref.kind;
+    out << s.name << ": " << s.system << ", t = " << shortest(s.t0) << " .. " << shortest(s.t_end);
+    if (s.period > 0) out << " (" << format_number((s.t_end - s.t0) / s.period, 6) << " periods)";
+    out << ", dt = " << shortest(s.dt.front());
+    if (std::any_of(s.methods.begin(), s.methods.end(), [](const scene_method& m) { return adaptive(m); }))
+        out << " (tolerance " << shortest(s.tolerances.front()) << ")";
+    out << ", reference: " << ref.kind;
     if (ref.error > 0) out << " (its own error ~" << format_number(ref.error, 2) << ")";
     out << "\n";
     for (const scene_method& m : s.methods)

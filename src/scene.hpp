@@ -43,6 +43,10 @@ struct output_spec {
 };
 inline constexpr std::size_t max_output_times = 10'000'000;
 
+// A relative error at or above this (final or energy) leaves no correct digit:
+// such a run is flagged as not a result (a smaller dt), not printed as a row.
+inline constexpr double order_one_error = 0.1;
+
 // A method as a scene lists it: a name, or {name = ..., dt = ..., tolerances = ...}
 // with a sweep of its own (a LogH method's fictitious step differs from dt).
 struct scene_method : method_spec {

@@ -388,4 +388,25 @@ TEST_CASE("run: the final error, and so a reference, only where it is free or as
     CHECK(out.str().empty());
 }
 
+TEST_CASE("run: an error of order one is flagged, not printed as an ordinary row, and the heading says what was given") {
+    // Kepler e = 0.5 at dt = 5 (the issue's): energy error in the hundreds, below the divergence limit.
+    const std::string kepler = "system = \"kepler\"\nmethods = [\"leapfrog_kdk\"]\nt_end = 100\n";
+    const auto coarse = run_json(kepler + "dt = 5\n", "k.toml");
+    CHECK(coarse[0]["status"] == "stable");
+    CHECK(coarse[0]["error_order_one"] == true);
+    const auto fine = run_json(kepler + "dt = 0.001\n", "k.toml");
+    CHECK(fine[0]["error_order_one"] == false);
+    std::ostringstream text;
+    run_scene(parse_scene("system = \"kepler\"\nmethods = [\"leapfrog_kdk\"]\nt_end = 1\ndt = 0.05\n", "k.toml"), false,
+              text);
+    CHECK(text.str().find("t = 0 .. 1 (0.159155 periods), dt = 0.05, reference: exact") !=
+          std::string::npos);  // not 0.050000000000000003
+    CHECK(text.str().find("tolerance") == std::string::npos);  // no adaptive method, no tolerance
+    CHECK(text.str().find("ORDER ONE") == std::string::npos);
+    std::ostringstream flagged;
+    run_scene(parse_scene(kepler + "dt = 5\n", "k.toml"), false, flagged);
+    CHECK(flagged.str().find("^ ERROR OF ORDER ONE (>= 0.1): no correct digit, not a result; a smaller dt") !=
+          std::string::npos);
+}
+
 }  // namespace test_program_test_run_scene
