@@ -25,13 +25,21 @@ void print_systems(bool json) {
             nlohmann::json params = nlohmann::json::array();
             for (const auto& p : s.parameters)
                 params.push_back({{"name", p.name}, {"default", p.value}, {"expected", p.expected()}, {"meaning", p.meaning}});
-            out.push_back({{"name", s.name}, {"description", s.description}, {"exact", s.exact}, {"parameters", params}});
+            nlohmann::json entry = {{"name", s.name}, {"description", s.description}, {"exact", s.exact}, {"parameters", params}};
+            if (s.period.value) {
+                entry["period"] = {{"meaning", s.period.meaning}, {"default", period_of(s, with_defaults(s, {}, s.name))}};
+            }
+            out.push_back(entry);
         }
         std::cout << out.dump(2) << "\n";
         return;
     }
     for (const auto& s : systems()) {
         std::cout << s.name << (s.exact ? "  (exact solution)" : "") << "\n    " << s.description << "\n";
+        if (s.period.value) {  // what a scene's {periods = N} and {per_period = N} count in
+            std::cout << "    period " << format_number(period_of(s, with_defaults(s, {}, s.name)), 6) << " at the defaults: "
+                      << s.period.meaning << "\n";
+        }
         for (const auto& p : s.parameters)
             std::cout << "    " << std::left << std::setw(16) << p.name << std::setw(10) << format_number(p.value, 6)
                       << p.expected() << "; " << p.meaning << "\n";

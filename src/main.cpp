@@ -6,6 +6,7 @@
 //   sympl report [SCENE.toml ...] [--out DIR] [--quick]   the work-precision study
 //   sympl ensemble SCENE.toml [--out DIR] [--threads N]   a scene's [ensemble]
 // Invalid input: exit code 2 and one line on stderr.
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <iostream>
@@ -21,6 +22,7 @@
 #include "interrupt.hpp"
 #include "listings.hpp"
 #include "mpi_exchange.hpp"
+#include "near_names.hpp"
 #include "report.hpp"
 #include "run_scene.hpp"
 #include "scene.hpp"
@@ -115,6 +117,16 @@ int main(int argc, char** argv) {
     command_line c;
     add_listings(app, c);
     add_runs(app, c);
+    // A first word that is no subcommand: CLI11 would only say one is required.
+    if (argc > 1 && argv[1][0] != '-') {
+        std::vector<std::string> names;
+        const CLI::App& all = app;
+        for (const CLI::App* sub : all.get_subcommands([](const CLI::App*) { return true; })) names.push_back(sub->get_name());
+        if (std::find(names.begin(), names.end(), argv[1]) == names.end()) {
+            std::cerr << "sympl: unknown command '" << argv[1] << "'; " << expected_one_of(argv[1], names) << "\n";
+            return 2;
+        }
+    }
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp& e) {

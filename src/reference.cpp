@@ -1,6 +1,7 @@
 // References: exact, or a long-double Sofroniou-Spaletta 10 run, cached on disk.
 #include "reference.hpp"
 
+#include <chrono>
 #include <fstream>
 #include <functional>
 #include <iomanip>
@@ -52,6 +53,26 @@ reference_state make_reference(const scene& s, const problem& p, const run_plan&
         out.commit();
     }
     return r;
+}
+
+reference_cost estimate_reference(const scene& s, const problem& p, const run_plan& plan) {
+    reference_cost c{plan.reference_steps, 0};
+    if (p.exact || !(plan.reference_dt > 0)) return c;
+    const double dt = plan.reference_dt, span = s.t_end - s.t0;
+    // k steps, k growing fourfold, until they last 50 ms or cover an eighth of the span.
+    for (double k = 1;; k *= 4) {
+        const auto start = std::chrono::steady_clock::now();
+        try {
+            p.reference(s.t0, s.t0 + k * dt, dt, p.x0);
+        } catch (const integration_error&) {
+            return c;  // the reference itself will say so
+        }
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        if (seconds >= 0.05 || k * dt >= span / 8) {
+            c.seconds = seconds / k * plan.reference_steps;
+            return c;
+        }
+    }
 }
 
 }  // namespace sympl::app

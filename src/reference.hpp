@@ -29,4 +29,19 @@ struct reference_state {
 reference_state make_reference(const scene& s, const problem& p, const run_plan& plan,
                                const std::filesystem::path& cache = {});
 
+// What the reference will cost before it starts: its steps (both runs) and
+// the seconds they take, extrapolated from a timed run of a few of its steps
+// (a step's cost grows with the degrees of freedom, which step counts miss).
+struct reference_cost {
+    double steps = 0;
+    double seconds = 0;
+};
+reference_cost estimate_reference(const scene& s, const problem& p, const run_plan& plan);
+
+// `sympl run` says on stderr what a reference will cost when it is estimated
+// above announced_reference_seconds, and refuses one above
+// max_reference_seconds (scaled with --max-steps over its default).
+inline constexpr double announced_reference_seconds = 10;
+inline constexpr double max_reference_seconds = 3600;
+
 }  // namespace sympl::app

@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <iostream>
 #include <iomanip>
 #include <memory>
 #include <optional>
@@ -21,6 +22,7 @@
 #include "reference.hpp"
 #include "run_plan.hpp"
 #include "studies/study.hpp"
+#include "systems.hpp"
 #include "writers.hpp"
 
 namespace sympl::app {
@@ -36,6 +38,11 @@ struct outcome {
     double loop_area_error = -1;
 };
 
+// An error of order one: the run has no correct digit (scene.hpp).
+bool error_order_one(const outcome& o) {
+    return o.final_error >= order_one_error || o.r.max_energy_error >= order_one_error;
+}
+
 nlohmann::json as_json(const scene& s, const outcome& o, const reference_state& ref) {
     const run_result& r = o.r;
     nlohmann::json j = {{"scene", s.name}, {"method", o.method->name}, {"status", r.stable ? "stable" : "unstable"}};
@@ -49,6 +56,7 @@ nlohmann::json as_json(const scene& s, const outcome& o, const reference_state& 
     if (r.max_energy_error >= 0) j["max_energy_error"] = r.max_energy_error;
     if (o.final_error >= 0) j["final_error"] = o.final_error;
     if (o.loop_area_error >= 0) j["loop_area_error"] = o.loop_area_error;
+    if (r.stable) j["error_order_one"] = error_order_one(o);
     j["reference"] = ref.kind;
     if (!ref.failure.empty()) j["reference_failure"] = ref.failure;
     j["seconds"] = std::max(r.seconds, 0.0);
@@ -71,6 +79,9 @@ std::string as_text(const scene& s, const outcome& o) {
       << (o.final_error >= 0 ? format_number(o.final_error, 3) : "-") << "   "
       << (r.seconds >= 0 ? format_number(r.seconds * 1e3, 3) + " ms" : std::string("(not timed)"));
     if (o.loop_area_error >= 0) l << "   loop area error " << format_number(o.loop_area_error, 3);
+    if (error_order_one(o))
+        l << "\n    ^ ERROR OF ORDER ONE (>= " << format_number(order_one_error) << "): no correct digit, not a result; "
+          << "a smaller dt";
     if (s.output.final_state) {
         l << "\n    final state:";
         for (double v : r.final_state) l << " " << format_number(v, 17);
@@ -165,11 +176,20 @@ private:
 
 namespace {
 
-std::vector<std::string> trajectory_header(std::size_t degrees_of_freedom) {
+// t, then the state's columns as everywhere else (q1..qn, p1..pn, or bodies' names).
+std::vector<std::string> trajectory_header(const problem& p) {
     std::vector<std::string> header{"t"};
-    for (const char* coordinate : {"q", "p"})
-        for (std::size_t i = 0; i < degrees_of_freedom; ++i) header.push_back(coordinate + std::to_string(i));
+    for (auto& column : state_columns(p.system, p.degrees_of_freedom)) header.push_back(std::move(column));
     return header;
+}
+
+// <scene>_<method>_energy.csv: t and the relative energy error, every k steps.
+void write_energy_series(const run_result& r, const fs::path& file, std::vector<std::unique_ptr<atomic_file>>& files) {
+    auto out = std::make_unique<atomic_file>(file);
+    out->stream() << "t,energy_error\n" << std::setprecision(17);
+    for (const auto& [t, e] : r.energy_series) out->stream() << t << ',' << e << '\n';
+    if (!r.stable) out->stream() << "# truncated: " << r.failure << "\n";
+    files.push_back(std::move(out));
 }
 
 // One planned run: its trajectory file (staged), its checkpoints, its measures.
@@ -179,6 +199,7 @@ outcome run_one(const scene& s, const problem& p, const planned_run& planned, co
     const scene_method& m = *planned.method;
     run_request rq = planned.request();
     rq.energy = s.output.energy_error && p.hamiltonian;
+    rq.energy_series_every = rq.energy ? s.output.energy_every : 0;
     rq.timing_repeats = s.checkpoint.every_steps ? 0 : 1;  // a checkpointed run is not timed a second time
     if (bar.tty)
         rq.progress = [&](double t) {
@@ -186,7 +207,7 @@ outcome run_one(const scene& s, const problem& p, const planned_run& planned, co
                      format_number(100 * (t - s.t0) / (s.t_end - s.t0), 3) + "%)");
         };
     std::unique_ptr<atomic_file> trajectory;
-    const std::string header = csv_line(trajectory_header(p.degrees_of_freedom));
+    const std::string header = csv_line(trajectory_header(p));
     if (s.output.writes_trajectory()) {
         trajectory = std::make_unique<atomic_file>(dir / (file_name_part(s.name) + "_" + file_name_part(m.name) +
                                                           "_trajectory.csv"));
@@ -206,18 +227,25 @@ outcome run_one(const scene& s, const problem& p, const planned_run& planned, co
     if (trajectory && !o.r.stable)  // a comment line (gnuplot and CSV readers with '#' comments skip it)
         trajectory->stream() << "# truncated: " << o.r.failure << "\n";
     if (trajectory) files.push_back(std::move(trajectory));
+    if (rq.energy_series_every)
+        write_energy_series(o.r, dir / (file_name_part(s.name) + "_" + file_name_part(m.name) + "_energy.csv"), files);
     if (checkpoints) finished_checkpoints.push_back(std::move(*checkpoints));
-    if (o.r.stable && ref.failure.empty()) o.final_error = relative_difference(o.r.final_state, ref.x);
+    if (o.r.stable && !ref.x.empty()) o.final_error = relative_difference(o.r.final_state, ref.x);
     if (o.r.stable && s.output.loop_area) o.loop_area_error = loop_area_error(p, m, rq, s.t0, s.t_end);
     return o;
 }
 
 // The summary's first lines: what ran, against which reference; a sweep says
 // which of its values `sympl run` takes.
+// Times and steps as the scene wrote them (shortest: 0.05, not 0.050000000000000003);
+// a tolerance only where an adaptive method uses one.
 void write_heading(const scene& s, const run_plan& plan, const reference_state& ref, std::ostream& out) {
-    out << s.name << ": " << s.system << ", t = " << format_number(s.t0, 17) << " .. " << format_number(s.t_end, 17)
-        << ", dt = " << format_number(s.dt.front(), 17) << " (dopri5 tolerance " << format_number(s.tolerances.front())
-        << "), reference: " << ref.kind;
+    out << s.name << ": " << s.system << ", t = " << shortest(s.t0) << " .. " << shortest(s.t_end);
+    if (s.period > 0) out << " (" << format_number((s.t_end - s.t0) / s.period, 6) << " periods)";
+    out << ", dt = " << shortest(s.dt.front());
+    if (std::any_of(s.methods.begin(), s.methods.end(), [](const scene_method& m) { return adaptive(m); }))
+        out << " (tolerance " << shortest(s.tolerances.front()) << ")";
+    out << ", reference: " << ref.kind;
     if (ref.error > 0) out << " (its own error ~" << format_number(ref.error, 2) << ")";
     out << "\n";
     for (const scene_method& m : s.methods)
@@ -233,20 +261,50 @@ void write_heading(const scene& s, const run_plan& plan, const reference_state& 
 
 }  // namespace
 
+// The reference a run's final errors need, said on stderr before it starts
+// when it is long, refused up front when absurd; none when the scene does not
+// ask for final errors (and has no exact solution, which is free).
+reference_state reference_for_run(const scene& s, const problem& p, const run_plan& plan, double max_steps) {
+    const bool asked = s.output.final_error.value_or(bool(p.exact));
+    if (!asked)
+        return {{}, 0,
+                p.exact ? std::string("none (output.final_error = false)")
+                        : "none (output.final_error = true measures final errors against " + p.reference_method + ")",
+                {}};
+    if (p.exact) return make_reference(s, p, plan);
+    const reference_cost cost = estimate_reference(s, p, plan);
+    const std::string what = "the reference for the final errors (" + p.reference_method + ", dt = " +
+                             shortest(plan.reference_dt) + ", " + format_number(cost.steps, 3) + " steps of " +
+                             std::to_string(p.degrees_of_freedom) + " degrees of freedom) takes about " +
+                             format_number(cost.seconds, 2) + " s";
+    const double limit = max_reference_seconds * max_steps / default_max_steps;
+    if (cost.seconds > limit)
+        throw scene_error(s.source + ": " + what + ", measured on its first steps; the limit is " +
+                          format_number(limit, 3) + " s (leave output.final_error out, or raise it with --max-steps)");
+    if (cost.seconds > announced_reference_seconds)
+        std::cerr << "sympl: " << what << ", before the methods run (leave output.final_error out to skip it)"
+                  << std::endl;
+    return make_reference(s, p, plan);
+}
+
 void run_scene(const scene& s, bool json, std::ostream& out, double max_steps, bool resume) {
     const problem p = problem_of(s);
-    const run_plan plan = plan_runs(s, p, sweep_use::first);
+    run_plan plan = plan_runs(s, p, sweep_use::first);
+    if (!s.output.final_error.value_or(bool(p.exact))) plan.reference_dt = plan.reference_steps = 0;  // none runs
     check_run_size(plan, max_steps);
+    if (s.output.energy_every && !p.hamiltonian)
+        throw scene_error(s.source + ": output.energy_every: " + s.system + " has no energy (it is not Hamiltonian); "
+                          "expected no energy_every");
     if (!s.output.times.empty() && !p.form.separable_hamiltonian)
         throw scene_error(s.source + ": output.times: " + s.system +
                           " is not a separable Hamiltonian T(p) + V(q), whose velocity and force the interpolant "
                           "between steps needs; use output.trajectory_every");
     if (resume && !s.checkpoint.every_steps)
         throw scene_error(s.source + ": --resume, but the scene has no checkpoint = {every_steps = N, file = \"...\"}");
-    const reference_state ref = make_reference(s, p, plan);
+    const reference_state ref = reference_for_run(s, p, plan, max_steps);
     // Files, when the scene asks for any, are staged and moved into place together.
     std::optional<output_set> outputs;
-    if (s.output.writes_trajectory()) outputs.emplace(s.output.directory);
+    if (s.output.writes_files()) outputs.emplace(s.output.directory);
     const fs::path dir = outputs ? outputs->staging() : fs::path(s.output.directory);
     std::vector<outcome> outcomes;
     const progress bar;  // long runs show how far they are on a terminal

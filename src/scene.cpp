@@ -16,8 +16,19 @@ namespace sympl::app {
 
 namespace {
 
-// "name" or {name = "name", dt = ..., tolerances = ...}
-scene_method method_by_name(const reader& r, const toml::node& n, const std::map<std::string, table>& inline_tables) {
+// Every name a method can have in this scene: for "did you mean".
+std::vector<std::string> method_names(const std::map<std::string, table>& inline_tables) {
+    std::vector<std::string> names;
+    for (const auto& [name, t] : inline_tables) names.push_back(name);
+    for (const auto& t : sympl::catalog()) names.push_back(t.name());
+    for (const auto& name : method_names_beside_tables()) names.push_back(name);
+    return names;
+}
+
+// "name" or {name = "name", dt = ..., tolerances = ...}; nullopt for an
+// unknown name (noted in the reader, which reports every one together).
+std::optional<scene_method> method_by_name(const reader& r, const toml::node& n,
+                                           const std::map<std::string, table>& inline_tables) {
     const toml::node* name_node = &n;
     const toml::table* t = n.as_table();
     if (t) {
@@ -30,12 +41,16 @@ scene_method method_by_name(const reader& r, const toml::node& n, const std::map
     try {
         m = resolve_method(name, inline_tables);
     } catch (const invalid_argument& e) {
-        r.fail(*name_node, e.what());
+        r.unknown_name(*name_node, e.what());
+        return std::nullopt;
     }
-    if (!m)
-        r.fail(*name_node, "unknown method '" + name + "'; expected a catalog name (sympl tables), an inline [[table]], "
-                           "logh(<table>), extrapolated(<table>, k), compensated(<table>), tao(<table>), "
-                           "semiexplicit(<table>), or one of: " + join(method_names_beside_tables()));
+    if (!m) {
+        r.unknown_name(*name_node, "unknown method '" + name + "'; " + did_you_mean(name, method_names(inline_tables)) +
+                                       "expected a catalog name (sympl tables), an inline [[table]], "
+                                       "logh(<table>), extrapolated(<table>, k), compensated(<table>), tao(<table>), "
+                                       "semiexplicit(<table>), or one of: " + join(method_names_beside_tables()));
+        return std::nullopt;
+    }
     scene_method sm{*m, {}, {}};
     if (t && t->get("dt")) sm.dt = r.sweep(*t->get("dt"), "dt");
     if (t && t->get("tolerances")) sm.tolerances = r.sweep(*t->get("tolerances"), "tolerances");
@@ -89,8 +104,10 @@ void read_system(const reader& r, const toml::table& doc, scene& s) {
     if (!system) r.fail(top, "missing 'system'; expected one of: " + join(system_names()));
     s.system = r.string(*system, "system");
     const auto& systems = system_names();
-    if (std::find(systems.begin(), systems.end(), s.system) == systems.end())
-        r.fail(*system, "unknown system '" + s.system + "'; expected one of: " + join(systems));
+    if (std::find(systems.begin(), systems.end(), s.system) == systems.end()) {
+        r.unknown_name(*system, "unknown system '" + s.system + "'; " + expected_one_of(s.system, systems));
+        return;  // its parameters cannot be checked; the rest of the scene can
+    }
 
     const system_entry& entry = *find_system(s.system);
     if (const toml::node* p = doc.get("parameters")) {
@@ -100,6 +117,7 @@ void read_system(const reader& r, const toml::table& doc, scene& s) {
         for (const auto& q : entry.parameters) known.insert(q.name);
         r.only_keys(*t, known, "[parameters] of " + s.system);
         for (const auto& [key, node] : *t) {
+            if (!entry.find(std::string(key.str()))) continue;  // noted by only_keys
             const parameter& q = *entry.find(std::string(key.str()));
             const double v = r.number(node, q.name);
             if (!q.accepts(v)) r.fail(node, s.system + " " + q.name + " = " + shortest(v) + "; expected " + q.expected());
@@ -135,7 +153,9 @@ void read_methods(const reader& r, const toml::table& doc, scene& s) {
     if (!ma || ma->empty()) r.fail(*methods, "'methods' must be a non-empty array of method names");
     if (ma->size() > 1000) r.fail(*methods, std::to_string(ma->size()) + " methods; expected at most 1000");
     for (const auto& m : *ma) {
-        s.methods.push_back(method_by_name(r, m, inline_tables));
+        std::optional<scene_method> named = method_by_name(r, m, inline_tables);
+        if (!named) continue;
+        s.methods.push_back(std::move(*named));
         for (std::size_t k = 0; k + 1 < s.methods.size(); ++k)
             if (s.methods[k].name == s.methods.back().name)
                 r.fail(m, "method '" + s.methods.back().name + "' is listed twice; expected each method once");
@@ -197,21 +217,32 @@ std::vector<double> read_output_times(const reader& r, const toml::node& n, cons
     return times;
 }
 
+// output.trajectory_every, output.energy_every: every k-th step, k >= 1.
+std::size_t every_k_steps(const reader& r, const toml::node& n, const std::string& key, const std::string& what) {
+    const auto k = n.value<std::int64_t>();
+    if (!k || !n.is_integer() || *k < 1)
+        r.fail(n, "'" + key + "' must be an integer >= 1 (every k-th step; leave it out for no " + what + ")");
+    return std::size_t(*k);
+}
+
 void read_output(const reader& r, const toml::node& o, scene& s, double file_t_end) {
     const toml::table* t = o.as_table();
     if (!t) r.fail(o, "'output' must be a table");
-    r.only_keys(*t, {"energy_error", "trajectory_every", "times", "final_state", "loop_area", "directory"}, "[output]");
+    r.only_keys(*t, {"energy_error", "energy_every", "final_error", "trajectory_every", "times", "final_state", "loop_area",
+                     "directory"},
+                "[output]");
     if (auto* n = t->get("energy_error")) s.output.energy_error = r.boolean(*n, "output.energy_error");
+    if (auto* n = t->get("final_error")) s.output.final_error = r.boolean(*n, "output.final_error");
+    if (auto* n = t->get("energy_every")) {
+        s.output.energy_every = every_k_steps(r, *n, "output.energy_every", "energy file");
+        if (!s.output.energy_error)
+            r.fail(*n, "'output.energy_every' with energy_error = false; expected energy_error = true (or no energy_every)");
+    }
     if (auto* n = t->get("final_state")) s.output.final_state = r.boolean(*n, "output.final_state");
     if (auto* n = t->get("loop_area")) s.output.loop_area = r.boolean(*n, "output.loop_area");
     if (auto* n = t->get("directory")) s.output.directory = r.string(*n, "output.directory");
-    if (auto* n = t->get("trajectory_every")) {
-        const auto k = n->value<std::int64_t>();
-        if (!k || !n->is_integer() || *k < 1)
-            r.fail(*n, "'output.trajectory_every' must be an integer >= 1 (every k-th step; leave it out for no "
-                       "trajectory)");
-        s.output.trajectory_every = std::size_t(*k);
-    }
+    if (auto* n = t->get("trajectory_every"))
+        s.output.trajectory_every = every_k_steps(r, *n, "output.trajectory_every", "trajectory");
     if (auto* n = t->get("times")) {
         if (s.output.trajectory_every)
             r.fail(*n, "'output.times' and 'output.trajectory_every' both choose the trajectory's rows; expected one "
@@ -242,7 +273,7 @@ void read_checkpoint(const reader& r, const toml::node& c, const toml::array& me
 }  // namespace
 
 scene parse_scene(const std::string& text, const std::string& source, bool quick) {
-    const reader r{source};
+    reader r{source};
     toml::table doc;
     try {
         doc = toml::parse(text, source);
@@ -269,6 +300,11 @@ scene parse_scene(const std::string& text, const std::string& source, bool quick
     const toml::source_region top{{1, 1}, {1, 1}, nullptr};
     s.name = doc.get("name") ? r.string(*doc.get("name"), "name") : source;
     read_system(r, doc, s);
+    if (const system_entry* entry = find_system(s.system)) {
+        r.period = period_of(*entry, with_defaults(*entry, s.parameters, source));
+        r.period_meaning = entry->period.meaning;
+        s.period = r.period;
+    }
     read_methods(r, doc, s);
     const toml::node* dt = timing("dt");
     if (!dt) r.fail(top, "missing 'dt'; expected a step size, an array, or {from, to, count}");
@@ -278,16 +314,24 @@ scene parse_scene(const std::string& text, const std::string& source, bool quick
     if (const toml::node* t0 = doc.get("t0")) s.t0 = r.number(*t0, "t0");
     const toml::node* t_end = timing("t_end");
     if (!t_end) r.fail(top, "missing 't_end'");
-    s.t_end = r.number(*t_end, "t_end");
+    s.t_end = r.span_end(*t_end, "t_end", s.t0);
     if (!(s.t_end > s.t0) || !std::isfinite(s.t_end))
         r.fail(*t_end, "t_end = " + shortest(s.t_end) + " is not after t0 = " + shortest(s.t0) +
                            "; expected t_end > t0");
 
-    const double file_t_end = doc.get("t_end") ? r.number(*doc.get("t_end"), "t_end") : s.t_end;
+    const double file_t_end = doc.get("t_end") ? r.span_end(*doc.get("t_end"), "t_end", s.t0) : s.t_end;
     if (const toml::node* o = doc.get("output")) read_output(r, *o, s, file_t_end);
     const toml::array& methods = *doc.get("methods")->as_array();
-    if (const toml::node* c = doc.get("checkpoint")) read_checkpoint(r, *c, methods, s);
+    // What follows needs the system and every method (by index in the file).
+    if (!find_system(s.system) || s.methods.size() != methods.size()) r.throw_unknown();
+    if (const toml::node* c = doc.get("checkpoint")) {
+        read_checkpoint(r, *c, methods, s);
+        if (s.output.energy_every)  // a resumed run's series would start at the checkpoint
+            r.fail(*c, "'checkpoint' with output.energy_every: a resumed run would miss the energy rows before its "
+                       "checkpoint; expected one of them");
+    }
     if (const toml::node* e = doc.get("ensemble")) s.ensemble = read_ensemble(r, *e, s, *find_system(s.system), methods);
+    r.throw_unknown();
     return s;
 }
 

@@ -20,7 +20,13 @@ namespace sympl::app {
 
 // What a run writes; what is not asked for is neither computed nor stored.
 struct output_spec {
-    bool energy_error = true;          // max relative energy error (and its series in `run`)
+    bool energy_error = true;          // max relative energy error
+    // `energy_every = k`: `run` writes <scene>_<method>_energy.csv, the
+    // relative energy error against time every k steps (0: no file).
+    std::size_t energy_every = 0;
+    // The final error against the exact solution or a reference run. Unset:
+    // where it is free (an exact solution); a reference is run only when asked.
+    std::optional<bool> final_error;
     std::size_t trajectory_every = 0;  // 0: no trajectory file
     // `times = [...]` or `{from, to, count}`: trajectory rows at these times,
     // read off each step's Hermite interpolant (drivers/hermite_interpolant.hpp); the
@@ -33,8 +39,13 @@ struct output_spec {
     bool loop_area = false;            // area of a loop of initial conditions around x0, plane 0
     std::string directory = ".";       // where `sympl run` writes its files
     bool writes_trajectory() const { return trajectory_every != 0 || !times.empty() || times_dropped != 0; }
+    bool writes_files() const { return writes_trajectory() || energy_every != 0; }
 };
 inline constexpr std::size_t max_output_times = 10'000'000;
+
+// A relative error at or above this (final or energy) leaves no correct digit:
+// such a run is flagged as not a result (a smaller dt), not printed as a row.
+inline constexpr double order_one_error = 0.1;
 
 // A method as a scene lists it: a name, or {name = ..., dt = ..., tolerances = ...}
 // with a sweep of its own (a LogH method's fictitious step differs from dt).
@@ -77,6 +88,7 @@ struct scene {
     std::map<std::string, double> parameters;
     std::vector<double> q0, p0;  // empty: the system's default
     std::vector<scene_method> methods;
+    double period = 0;               // the system's characteristic period here (0: none), systems.hpp
     std::vector<double> dt;          // one step size or a sweep, largest first
     std::vector<double> tolerances;  // for odeint_dopri5 (default 1e-3 .. 1e-12)
     double t0 = 0;

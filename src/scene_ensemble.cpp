@@ -34,6 +34,7 @@ ensemble_spec read_ensemble(const reader& r, const toml::node& node, const scene
         std::vector<std::pair<toml::source_position, ensemble_axis>> axes;
         for (const auto& [key, n] : *g) {
             const std::string name(key.str());
+            if (!known.count(name)) continue;  // noted by only_keys
             const toml::table* a = n.as_table();
             if (!a) r.fail(n, "'ensemble.grid." + name + "' must be {from = ..., to = ..., count = ...}");
             r.only_keys(*a, {"from", "to", "count"}, "ensemble.grid." + name);

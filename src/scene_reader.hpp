@@ -9,6 +9,7 @@
 #include <toml++/toml.h>
 
 #include "format.hpp"
+#include "near_names.hpp"
 #include "scene.hpp"
 #include "systems.hpp"
 
@@ -20,22 +21,43 @@ inline std::string join(const std::vector<std::string>& v) {
     return out;
 }
 
-// Reads typed values and reports where a value is wrong.
+// Reads typed values and reports where a value is wrong. Unknown names (keys,
+// the system, methods) are collected and reported together, one line each,
+// with the first error that stops the reading or at its end (throw_unknown).
 struct reader {
     std::string source;
+    // The system's characteristic period for the scene's parameters (0: none)
+    // and what it is: what {periods = N} and {per_period = N} count in.
+    double period = 0;
+    std::string period_meaning{};
+    mutable std::vector<std::string> unknown{};
 
+    std::string at(const toml::source_region& where) const {
+        return source + ":" + std::to_string(where.begin.line) + ":" + std::to_string(where.begin.column) + ": ";
+    }
     [[noreturn]] void fail(const toml::source_region& where, const std::string& what) const {
-        throw scene_error(source + ":" + std::to_string(where.begin.line) + ":" + std::to_string(where.begin.column) +
-                          ": " + what);
+        std::string all;
+        for (const auto& line : unknown) all += line + "\n";
+        throw scene_error(all + at(where) + what);
     }
     [[noreturn]] void fail(const toml::node& n, const std::string& what) const { fail(n.source(), what); }
+
+    // An unknown name: noted, and the reading goes on to find the others.
+    void unknown_name(const toml::node& n, const std::string& what) const { unknown.push_back(at(n.source()) + what); }
+    void throw_unknown() const {
+        if (unknown.empty()) return;
+        std::string all;
+        for (const auto& line : unknown) all += (all.empty() ? "" : "\n") + line;
+        throw scene_error(all);
+    }
 
     // Only the listed keys: anything else is a typo the user wants to hear about.
     void only_keys(const toml::table& t, const std::set<std::string>& allowed, const std::string& where) const {
         for (const auto& [key, node] : t)
             if (!allowed.count(std::string(key.str()))) {
                 std::vector<std::string> names(allowed.begin(), allowed.end());
-                fail(node, "unknown key '" + std::string(key.str()) + "' in " + where + "; expected one of: " + join(names));
+                unknown_name(node, "unknown key '" + std::string(key.str()) + "' in " + where + "; " +
+                                       expected_one_of(std::string(key.str()), names));
             }
     }
 
@@ -84,14 +106,41 @@ struct reader {
         return out;
     }
 
+    // The characteristic period, or an error at n saying there is none.
+    double period_for(const toml::node& n, const std::string& key) const {
+        if (!(period > 0))
+            fail(n, "'" + key + "' counts in the system's characteristic period, and it has none" +
+                        (period_meaning.empty() ? "" : " at these parameters (" + period_meaning + ")") +
+                        "; expected a value in time units");
+        return period;
+    }
+
+    // t_end = 100 | {periods = N}: N characteristic periods after t0.
+    double span_end(const toml::node& n, const std::string& key, double t0) const {
+        if (const toml::table* t = n.as_table()) {
+            only_keys(*t, {"periods"}, "'" + key + "'");
+            need_keys(n, *t, {"periods"}, key);
+            return t0 + positive(*t->get("periods"), key + ".periods") * period_for(n, key);
+        }
+        return number(n, key);
+    }
+
     // dt = 0.01 | [0.1, 0.05] | { from = 0.1, to = 0.001, count = 7 } (geometric)
+    //    | {per_period = N}, N steps per characteristic period, N any of the above.
     std::vector<double> sweep(const toml::node& n, const std::string& key) const {
         std::vector<double> out;
+        if (const toml::table* t = n.as_table(); t && t->get("per_period")) {
+            only_keys(*t, {"per_period"}, "'" + key + "'");
+            const double p = period_for(n, key);
+            for (double steps : sweep(*t->get("per_period"), key + ".per_period")) out.push_back(p / steps);
+            std::sort(out.rbegin(), out.rend());
+            return out;
+        }
         if (n.is_array()) {
             for (const auto& e : *n.as_array()) out.push_back(positive(e, key));
             if (out.empty()) fail(n, "'" + key + "' is an empty array; expected at least one value");
         } else if (const toml::table* t = n.as_table()) {
-            only_keys(*t, {"from", "to", "count"}, "'" + key + "'");
+            only_keys(*t, {"from", "to", "count", "per_period"}, "'" + key + "'");
             const toml::node* from = t->get("from");
             const toml::node* to = t->get("to");
             const toml::node* count = t->get("count");

@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "format.hpp"
+#include "near_names.hpp"
 #include "systems/list.hpp"
 
 namespace sympl::app {
@@ -55,12 +56,39 @@ std::vector<std::string> system_names() {
     return names;
 }
 
+double period_of(const system_entry& entry, const parameter_values& values) {
+    if (!entry.period.value) return 0;
+    const double t = entry.period.value(values);
+    return std::isfinite(t) && t > 0 ? t : 0;
+}
+
+std::vector<std::string> state_columns(const std::string& system, std::size_t degrees_of_freedom) {
+    const system_entry* entry = find_system(system);
+    std::vector<std::string> columns;
+    if (entry && entry->coordinate_names.size() == degrees_of_freedom) {
+        for (const auto& q : entry->coordinate_names) columns.push_back(q);
+        for (const auto& q : entry->coordinate_names) {  // "jupiter_x" -> "jupiter_px"
+            const auto cut = q.rfind('_');
+            columns.push_back(cut == std::string::npos ? "p_" + q : q.substr(0, cut + 1) + "p" + q.substr(cut + 1));
+        }
+        return columns;
+    }
+    for (const char* coordinate : {"q", "p"})
+        for (std::size_t i = 1; i <= degrees_of_freedom; ++i) columns.push_back(coordinate + std::to_string(i));
+    return columns;
+}
+
 parameter_values with_defaults(const system_entry& entry, const parameter_values& given, const std::string& where) {
     parameter_values v;
     for (const auto& p : entry.parameters) v[p.name] = p.value;
     for (const auto& [name, value] : given) {
         const parameter* p = entry.find(name);
-        if (!p) throw invalid_argument(where + ": " + entry.name + " has no parameter '" + name + "'");
+        if (!p) {
+            std::vector<std::string> names;
+            for (const auto& q : entry.parameters) names.push_back(q.name);
+            throw invalid_argument(where + ": " + entry.name + " has no parameter '" + name + "'; " +
+                                   expected_one_of(name, names));
+        }
         if (!p->accepts(value))
             throw invalid_argument(where + ": " + entry.name + " " + name + " = " + shortest(value) +
                                    "; expected " + p->expected());
@@ -72,7 +100,9 @@ parameter_values with_defaults(const system_entry& entry, const parameter_values
 problem make_problem(const std::string& system, const parameter_values& given, const std::vector<double>& q0,
                      const std::vector<double>& p0, const std::string& where) {
     const system_entry* entry = find_system(system);
-    if (!entry) throw invalid_argument(where + ": unknown system '" + system + "'");
+    if (!entry)
+        throw invalid_argument(where + ": unknown system '" + system + "'; " +
+                               expected_one_of(system, system_names()));
     problem p;
     try {
         p = entry->build(with_defaults(*entry, given, where));

@@ -8,9 +8,11 @@
 // initializers), and its line in systems/list.hpp. Each entry is a
 // translation unit of its own: it instantiates every method kind for its
 // system, and the files build in parallel.
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <utility>
 #include <string>
 #include <vector>
@@ -39,6 +41,8 @@ struct parameter {
 
 using parameter_values = std::map<std::string, double>;
 
+inline constexpr double two_pi = 2 * std::numbers::pi;
+
 // Parameter kinds, by their ranges.
 inline constexpr double largest_chain = 1e6;  // degrees of freedom: 16 MB per state, a run needs a few
 inline parameter positive(std::string name, double value, std::string meaning) {
@@ -59,6 +63,14 @@ inline parameter of_initial_state(parameter p) {
     return p;
 }
 
+// The system's characteristic period (or time scale) in its time unit, for
+// given parameters: what a scene's `t_end = {periods = N}` and
+// `dt = {per_period = N}` count in (docs/scenes.md). No value: none.
+struct time_scale {
+    std::string meaning{};  // what it is, with its formula: "orbital period 2 pi / sqrt(mu)"
+    std::function<double(const parameter_values&)> value{};
+};
+
 struct system_entry {
     std::string name;
     std::string description;  // the Hamiltonian or equations, with the source
@@ -67,6 +79,9 @@ struct system_entry {
     std::function<problem(const parameter_values&)> build;  // every parameter present and valid
     bool negative_potential = false;  // V(q) < 0 everywhere (gravitation): LogH applies
     bool kinetic_not_quadratic = false;  // a separable H whose T is not quadratic in p: no RKN pairs
+    time_scale period{};
+    // Names of q's components in output columns ("jupiter_x"); empty: q1..qn.
+    std::vector<std::string> coordinate_names{};
 
     const parameter* find(const std::string& parameter_name) const;
 };
@@ -78,6 +93,15 @@ std::vector<std::string> system_names();
 // The entry's defaults overridden by `given`; an unknown name or a value out
 // of range is an invalid_argument naming the value and what was expected.
 parameter_values with_defaults(const system_entry& entry, const parameter_values& given, const std::string& where);
+
+// The characteristic period for these parameters (every one present), or 0
+// when the system has none.
+double period_of(const system_entry& entry, const parameter_values& values);
+
+// Output columns of a state, q then p, counted from 1 as in physics texts and
+// the parameters' names (q2 of henon_heiles): q1..qn, p1..pn, or by the
+// registry's names ("jupiter_x", "jupiter_px").
+std::vector<std::string> state_columns(const std::string& system, std::size_t degrees_of_freedom);
 
 // The problem for a system by name, with the given parameters and, when q0 is
 // not empty, that initial state instead of the default (which drops the exact

@@ -20,6 +20,10 @@ system_entry charged_particle_entry() {
                                                            v.at("field_length"), v.at("confinement")},
                             {1.0, 0.0, 0.4, 1.0});
         },
+        .period = {"cyclotron period 2 pi m / (e B0) at the origin",
+                   [](const parameter_values& v) {
+                       return two_pi * v.at("mass") / (v.at("charge") * v.at("field"));
+                   }},
     };
 }
 

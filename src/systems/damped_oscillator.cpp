@@ -20,6 +20,10 @@ system_entry damped_oscillator_entry() {
             const phase_space<double, 1> x0(one_dof(1.0), one_dof(0.0));
             return model<1>(o, stacked(x0), exact_flow(o, x0));
         },
+        .period = {"undamped period 2 pi sqrt(m / k)",
+                   [](const parameter_values& v) {
+                       return two_pi * std::sqrt(v.at("mass") / v.at("stiffness"));
+                   }},
     };
 }
 

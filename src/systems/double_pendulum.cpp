@@ -19,6 +19,10 @@ system_entry double_pendulum_entry() {
                                                           v.at("length2"), v.at("gravity")},
                             {1.0, 0.5, 0.2, -0.1});
         },
+        .period = {"time scale 2 pi sqrt(l1 / g) (the upper pendulum alone, small amplitude)",
+                   [](const parameter_values& v) {
+                       return two_pi * std::sqrt(v.at("length1") / v.at("gravity"));
+                   }},
     };
 }
 

@@ -20,6 +20,10 @@ system_entry fpu_beta_entry() {
             for (std::size_t k = 0; k < n; ++k) x0[k] = std::sin(pi * double(k + 1) / double(n + 1));
             return model(hamiltonians::fpu_beta{v.at("beta")}, x0);
         },
+        .period = {"period of the lowest linear mode, pi / sin(pi / (2 (n + 1)))",
+                   [](const parameter_values& v) {
+                       return std::numbers::pi / std::sin(std::numbers::pi / (2 * (v.at("n") + 1)));
+                   }},
     };
 }
 

@@ -17,6 +17,8 @@ system_entry harmonic_oscillator_entry() {
             const phase_space<double, 1> x0(one_dof(1.0), one_dof(0.0));
             return model<1>(h, stacked(x0), exact_flow(h, x0));
         },
+        .period = {"period 2 pi / omega",
+                   [](const parameter_values& v) { return two_pi / v.at("omega"); }},
     };
 }
 

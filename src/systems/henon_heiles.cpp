@@ -17,6 +17,8 @@ system_entry henon_heiles_entry() {
             return model<2>(hamiltonians::henon_heiles{},
                             stacked(hamiltonians::henon_heiles::initial_state(v.at("energy"), v.at("q2"), v.at("p2"))));
         },
+        .period = {"small-oscillation period 2 pi (H = |p|^2/2 + |q|^2/2 + cubic)",
+                   [](const parameter_values&) { return two_pi; }},
     };
 }
 

@@ -34,6 +34,14 @@ system_entry kepler_entry() {
                             exact);
         },
         .negative_potential = true,
+        // The pericentre start of unit speed sqrt((1+e)/(1-e)) has a = mu (1-e) / (2 mu - 1 - e) (vis-viva):
+        // a = L at mu = 1; none when unbound.
+        .period = {"orbital period 2 pi sqrt(a^3 / mu) (2 pi at mu = 1, any scale)",
+                   [](const parameter_values& v) {
+                       const double mu = v.at("mu"), e = v.at("eccentricity"), L = v.at("scale");
+                       const double a = L * mu * (1 - e) / (2 * mu - 1 - e);
+                       return a > 0 ? two_pi * std::sqrt(a * a * a / (mu * L * L * L)) : 0.0;
+                   }},
     };
 }
 

@@ -22,6 +22,8 @@ system_entry kepler_3d_entry() {
                             [=](double t) { return stacked(hamiltonians::kepler::exact_state_3d(e, i, o, w, t)); });
         },
         .negative_potential = true,
+        .period = {"orbital period 2 pi (a = 1, mu = 1)",
+                   [](const parameter_values&) { return two_pi; }},
     };
 }
 

@@ -19,6 +19,10 @@ system_entry morse_entry() {
             const bool bound = energy(h, x0) < h.depth;
             return model<1>(h, stacked(x0), bound ? exact_flow(h, x0) : nullptr);
         },
+        .period = {"small-oscillation period 2 pi / (a sqrt(2 D / m))",
+                   [](const parameter_values& v) {
+                       return two_pi / (v.at("width") * std::sqrt(2 * v.at("depth") / v.at("mass")));
+                   }},
     };
 }
 

@@ -15,6 +15,14 @@ system_entry outer_solar_system_entry() {
             return model<hamiltonians::outer_solar_system::dimension>(h, stacked(h.initial_state()));
         },
         .negative_potential = true,
+        .period = {"Jupiter's orbital period, 4332.59 days (NASA planetary fact sheet)",
+                   [](const parameter_values&) { return 4332.59; }},
+        .coordinate_names = {"sun_x", "sun_y", "sun_z",
+                             "jupiter_x", "jupiter_y", "jupiter_z",
+                             "saturn_x", "saturn_y", "saturn_z",
+                             "uranus_x", "uranus_y", "uranus_z",
+                             "neptune_x", "neptune_y", "neptune_z",
+                             "pluto_x", "pluto_y", "pluto_z"},
     };
 }
 

@@ -14,6 +14,10 @@ system_entry pendulum_entry() {
         .build = [](const parameter_values& v) {
             return model<1>(hamiltonians::pendulum{v.at("mass"), v.at("length"), v.at("gravity")}, {1.2, 0.3});
         },
+        .period = {"small-amplitude period 2 pi sqrt(l / g)",
+                   [](const parameter_values& v) {
+                       return two_pi * std::sqrt(v.at("length") / v.at("gravity"));
+                   }},
     };
 }
 

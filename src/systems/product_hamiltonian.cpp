@@ -17,6 +17,8 @@ system_entry product_hamiltonian_entry() {
         .build = [](const parameter_values& v) {
             return model<1>(hamiltonians::product_hamiltonian{}, {v.at("q"), v.at("p")});
         },
+        .period = {"small-oscillation period 2 pi about the origin",
+                   [](const parameter_values&) { return two_pi; }},
     };
 }
 

@@ -15,6 +15,8 @@ system_entry relativistic_pendulum_entry() {
             return model<1>(hamiltonians::relativistic_pendulum{v.at("mass"), v.at("c"), v.at("k")}, {1.2, 0.9});
         },
         .kinetic_not_quadratic = true,
+        .period = {"small-amplitude, slow period 2 pi sqrt(m / k)",
+                   [](const parameter_values& v) { return two_pi * std::sqrt(v.at("mass") / v.at("k")); }},
     };
 }
 

@@ -15,6 +15,8 @@ system_entry stiff_fpu_entry() {
             const hamiltonians::stiff_fpu h{v.at("omega")};
             return model(h, stacked(h.initial_state<double, Eigen::Dynamic>(int(v.at("pairs")))));
         },
+        .period = {"stiff springs' period 2 pi / omega (the fast time scale)",
+                   [](const parameter_values& v) { return two_pi / v.at("omega"); }},
     };
 }
 

@@ -19,6 +19,10 @@ system_entry toda_entry() {
             for (std::size_t k = 0; k < n; ++k) x0[n + k] = std::cos(2 * std::acos(-1.0) * double(k) / double(n));
             return model(hamiltonians::toda{}, x0);
         },
+        .period = {"period of the lowest linear mode, pi / sin(pi / n)",
+                   [](const parameter_values& v) {
+                       return std::numbers::pi / std::sin(std::numbers::pi / v.at("n"));
+                   }},
     };
 }
 

@@ -17,6 +17,10 @@ system_entry two_particle_spring_entry() {
             return model<4>(h, stacked(hamiltonians::two_particle_spring::initial_state()),
                             exact_flow(h, hamiltonians::two_particle_spring::initial_state()));
         },
+        .period = {"period 2 pi sqrt(m / (2 k)) of the relative motion",
+                   [](const parameter_values& v) {
+                       return two_pi * std::sqrt(v.at("mass") / (2 * v.at("stiffness")));
+                   }},
     };
 }
 

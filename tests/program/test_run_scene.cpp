@@ -8,6 +8,7 @@
 #include <iomanip>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -95,7 +96,7 @@ TEST_CASE("run: names with quotes, commas and line breaks stay inside their JSON
 TEST_CASE("run: a reference that blows up is reported as the reference's failure, and the methods still run") {
     // Stiff FPU at dt = 0.5: the long-double reference at dt = 0.125 and 0.25 blows up.
     const auto json = run_json("system = \"stiff_fpu\"\nmethods = [\"leapfrog_kdk\", \"odeint_dopri5\"]\ndt = 0.5\n"
-                               "t_end = 10\n",
+                               "t_end = 10\n[output]\nfinal_error = true\n",
                                "stiff.toml");
     REQUIRE(json.size() == 2);
     CHECK(json[0]["reference_failure"].get<std::string>().find("the reference (sofroniou_spaletta_10, long double, "
@@ -300,6 +301,112 @@ TEST_CASE("run: output times after a resume from a checkpoint: the rows of the u
     }
     const std::string rows = whole.str();
     CHECK(std::count(rows.begin(), rows.end(), '\n') == 201);
+}
+
+TEST_CASE("run: trajectory columns count from 1 and name the planets' bodies") {
+    const fs::path dir = scratch_directory("sympl_test_run_columns");
+    fs::remove_all(dir);
+    const auto header_of = [&](const std::string& system) {
+        const scene s = parse_scene("name = \"c\"\nsystem = \"" + system + "\"\nmethods = [\"leapfrog_kdk\"]\ndt = 1\n"
+                                    "t_end = 2\n[output]\ntrajectory_every = 1\ndirectory = \"" + dir.string() + "\"\n",
+                                    "c.toml");
+        std::ostringstream out;
+        run_scene(s, true, out);
+        return read_csv(dir / "c_leapfrog_kdk_trajectory.csv").at(0);
+    };
+    CHECK(header_of("henon_heiles") == std::vector<std::string>{"t", "q1", "q2", "p1", "p2"});
+    const auto planets = header_of("outer_solar_system");
+    REQUIRE(planets.size() == 37);
+    CHECK(planets[1] == "sun_x");
+    CHECK(planets[4] == "jupiter_x");
+    CHECK(planets[19] == "sun_px");
+    CHECK(planets[36] == "pluto_pz");
+    fs::remove_all(dir);
+}
+
+TEST_CASE("run: energy_every writes the energy error against time, whose largest value is the summary's") {
+    const fs::path dir = scratch_directory("sympl_test_run_energy");
+    fs::remove_all(dir);
+    const scene s = parse_scene("name = \"e\"\nsystem = \"pendulum\"\nmethods = [\"leapfrog_kdk\", \"rk4\"]\ndt = 0.1\n"
+                                "t_end = 100\n[output]\nenergy_every = 10\ndirectory = \"" + dir.string() + "\"\n",
+                                "e.toml");
+    std::ostringstream out;
+    run_scene(s, true, out);
+    const auto json = nlohmann::json::parse(out.str());
+    for (int k = 0; k < 2; ++k) {
+        const std::string method = json[k]["method"];
+        CAPTURE(method);
+        const auto rows = read_csv(dir / ("e_" + method + "_energy.csv"));
+        REQUIRE(rows.size() == 1 + 101);  // header, t = 0, 1, ..., 100
+        CHECK(rows[0] == std::vector<std::string>{"t", "energy_error"});
+        CHECK(std::stod(rows[1][0]) == 0);
+        CHECK(std::stod(rows.back()[0]) == doctest::Approx(100));
+        double largest = 0;
+        for (std::size_t i = 1; i < rows.size(); ++i) largest = std::max(largest, std::stod(rows[i][1]));
+        // Sampled every 10th step: at most the max over all steps, and near it.
+        CHECK(largest <= json[k]["max_energy_error"].get<double>());
+        CHECK(largest > 0.5 * json[k]["max_energy_error"].get<double>());
+    }
+    // RK4's energy error drifts, leapfrog's stays bounded: the series shows which is which.
+    const auto series = [&](const std::string& method) {
+        std::vector<double> e;
+        for (const auto& row : read_csv(dir / ("e_" + method + "_energy.csv"))) e.push_back(row[0] == "t" ? 0 : std::stod(row[1]));
+        return e;  // e[i]: t = i - 1
+    };
+    const auto rk4 = series("rk4"), leapfrog = series("leapfrog_kdk");
+    CHECK(rk4[101] > 5 * rk4[11]);  // t = 100 against t = 10
+    const double first_half = *std::max_element(leapfrog.begin() + 1, leapfrog.begin() + 51);
+    const double second_half = *std::max_element(leapfrog.begin() + 51, leapfrog.end());
+    CHECK(second_half < 2 * first_half);
+    fs::remove_all(dir);
+    CHECK_THROWS_WITH_AS(run_scene(parse_scene("system = \"damped_oscillator\"\nmethods = [\"rk4\"]\ndt = 0.1\nt_end = 1\n"
+                                               "[output]\nenergy_every = 1\n", "d.toml"), true, out),
+                         doctest::Contains("d.toml: output.energy_every: damped_oscillator has no energy"), scene_error);
+}
+
+TEST_CASE("run: the final error, and so a reference, only where it is free or asked for") {
+    const std::string pendulum = "system = \"pendulum\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.01\nt_end = 10\n";
+    const auto plain = run_json(pendulum, "p.toml");
+    CHECK_FALSE(plain[0].contains("final_error"));
+    CHECK(plain[0]["reference"].get<std::string>().rfind("none (output.final_error = true measures", 0) == 0);
+    const auto asked = run_json(pendulum + "[output]\nfinal_error = true\n", "p.toml");
+    CHECK(asked[0]["reference"].get<std::string>().rfind("sofroniou_spaletta_10, long double", 0) == 0);
+    CHECK(asked[0]["final_error"].get<double>() < 1e-3);
+    const auto exact = run_json("system = \"kepler\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.01\nt_end = 10\n", "k.toml");
+    CHECK(exact[0]["reference"] == "exact");
+    CHECK(exact[0].contains("final_error"));
+    // A reference far dearer than the limit (scaled with --max-steps) is refused before anything runs:
+    // FPU with 1000 masses, 6e4 long-double steps of Sofroniou-Spaletta 10 against a limit of 0.216 s.
+    const scene fpu = parse_scene("system = \"fpu_beta\"\nparameters = {n = 1000}\nmethods = [\"leapfrog_kdk\"]\n"
+                                  "dt = 0.1\nt_end = 1000\n[output]\nfinal_error = true\n",
+                                  "fpu.toml");
+    std::ostringstream out;
+    CHECK_THROWS_WITH_AS(run_scene(fpu, true, out, 6e4),
+                         doctest::Contains("fpu.toml: the reference for the final errors (sofroniou_spaletta_10, long "
+                                           "double, dt = 0.025, 6e+04 steps of 1000 degrees of freedom) takes about "),
+                         scene_error);
+    CHECK(out.str().empty());
+}
+
+TEST_CASE("run: an error of order one is flagged, not printed as an ordinary row, and the heading says what was given") {
+    // Kepler e = 0.5 at dt = 5 (the issue's): energy error in the hundreds, below the divergence limit.
+    const std::string kepler = "system = \"kepler\"\nmethods = [\"leapfrog_kdk\"]\nt_end = 100\n";
+    const auto coarse = run_json(kepler + "dt = 5\n", "k.toml");
+    CHECK(coarse[0]["status"] == "stable");
+    CHECK(coarse[0]["error_order_one"] == true);
+    const auto fine = run_json(kepler + "dt = 0.001\n", "k.toml");
+    CHECK(fine[0]["error_order_one"] == false);
+    std::ostringstream text;
+    run_scene(parse_scene("system = \"kepler\"\nmethods = [\"leapfrog_kdk\"]\nt_end = 1\ndt = 0.05\n", "k.toml"), false,
+              text);
+    CHECK(text.str().find("t = 0 .. 1 (0.159155 periods), dt = 0.05, reference: exact") !=
+          std::string::npos);  // not 0.050000000000000003
+    CHECK(text.str().find("tolerance") == std::string::npos);  // no adaptive method, no tolerance
+    CHECK(text.str().find("ORDER ONE") == std::string::npos);
+    std::ostringstream flagged;
+    run_scene(parse_scene(kepler + "dt = 5\n", "k.toml"), false, flagged);
+    CHECK(flagged.str().find("^ ERROR OF ORDER ONE (>= 0.1): no correct digit, not a result; a smaller dt") !=
+          std::string::npos);
 }
 
 }  // namespace test_program_test_run_scene

@@ -3,7 +3,11 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <numbers>
+#include <vector>
 #include <fstream>
 #include <string>
 
@@ -260,6 +264,74 @@ TEST_CASE("scene: checkpoints are for methods that resume bit for bit, others ar
     // A different scene text is a different scene for its checkpoints.
     CHECK(parse_scene(head + "methods = [\"rk4\"]\n", "a.toml").text_hash !=
           parse_scene(head + "methods = [\"rk4\"] \n", "a.toml").text_hash);
+}
+
+TEST_CASE("scene: every unknown name in one pass, a line each with its place, and the nearest known names") {
+    const std::string text = "system = \"kepler\"\n"                                          // 1
+                             "parameters = {eccentricty = 0.5}\n"                            // 2
+                             "methods = [\"leapfrog_kd\", \"blanes_moan_s6\", \"rk5\"]\n"    // 3
+                             "dtt = 0.1\n"                                                   // 4
+                             "dt = 0.1\n"                                                    // 5
+                             "t_end = 1\n"                                                   // 6
+                             "[output]\n"                                                    // 7
+                             "energy_eror = true\n";                                         // 8
+    const std::string e = error_of(text);
+    std::vector<std::string> lines;
+    for (std::size_t at = 0; at <= e.size();) {
+        const std::size_t end = std::min(e.find('\n', at), e.size());
+        lines.push_back(e.substr(at, end - at));
+        at = end + 1;
+    }
+    REQUIRE(lines.size() == 5);
+    CHECK(lines[0].rfind("scene.toml:4:7: unknown key 'dtt' in the scene; did you mean 'dt'? expected one of: ", 0) == 0);
+    CHECK(lines[1].rfind("scene.toml:2:29: unknown key 'eccentricty' in [parameters] of kepler; did you mean "
+                         "'eccentricity'? expected one of: eccentricity, mu, scale", 0) == 0);
+    CHECK(lines[2].rfind("scene.toml:3:12: unknown method 'leapfrog_kd'; did you mean 'leapfrog_kdk'", 0) == 0);
+    CHECK(lines[3].rfind("scene.toml:3:45: unknown method 'rk5'; did you mean ", 0) == 0);
+    CHECK(lines[3].find("'rk4'") != std::string::npos);
+    CHECK(lines[4].rfind("scene.toml:8:15: unknown key 'energy_eror' in [output]; did you mean 'energy_error'?", 0) == 0);
+    // An unknown system: its parameters cannot be checked, the methods still are.
+    const std::string two = error_of("system = \"kepplr\"\nmethods = [\"rk5\"]\ndt = 0.1\nt_end = 1\n");
+    CHECK(two.rfind("scene.toml:1:10: unknown system 'kepplr'; did you mean 'kepler'? expected one of: ", 0) == 0);
+    CHECK(two.find("\nscene.toml:2:12: unknown method 'rk5'") != std::string::npos);
+    // An error that stops the reading still lists the unknown names found before it.
+    const std::string stopped = error_of("system = \"kepler\"\nmethods = [\"rk4\"]\ndtt = 0.1\nt_end = 1\n");
+    CHECK(stopped.rfind("scene.toml:3:7: unknown key 'dtt' in the scene; did you mean 'dt'?", 0) == 0);
+    CHECK(stopped.find("\nscene.toml:1:1: missing 'dt'") != std::string::npos);
+}
+
+TEST_CASE("scene: spans and steps in the system's characteristic period") {
+    const std::string head = "system = \"kepler\"\nmethods = [\"leapfrog_kdk\"]\n";
+    const double orbit = 2 * std::numbers::pi;  // Kepler at mu = 1, any eccentricity and scale
+    const scene s = parse_scene(head + "dt = {per_period = [100, 200]}\nt_end = {periods = 1000}\n", "p.toml");
+    CHECK(s.period == doctest::Approx(orbit).epsilon(1e-15));
+    CHECK(s.t_end == doctest::Approx(1000 * orbit).epsilon(1e-15));
+    REQUIRE(s.dt.size() == 2);
+    CHECK(s.dt[0] == doctest::Approx(orbit / 100).epsilon(1e-15));
+    CHECK(s.dt[1] == doctest::Approx(orbit / 200).epsilon(1e-15));
+    // A sweep of steps per period, a method's own, [quick]'s, and t0 counted from.
+    const scene q = parse_scene("system = \"kepler\"\nmethods = [{name = \"leapfrog_kdk\", dt = {per_period = 50}}]\n"
+                                "dt = {per_period = {from = 10, to = 1000, count = 3}}\nt0 = 1\nt_end = {periods = 2}\n"
+                                "[quick]\nt_end = {periods = 1}\n",
+                                "q.toml", true);
+    CHECK(q.t_end == doctest::Approx(1 + orbit));
+    REQUIRE(q.dt.size() == 3);
+    CHECK(q.dt[2] == doctest::Approx(orbit / 1000));
+    REQUIRE(q.methods[0].dt.size() == 1);
+    CHECK(q.methods[0].dt[0] == doctest::Approx(orbit / 50));
+    // The period follows the parameters: the oscillator at omega = 4.
+    const scene o = parse_scene("system = \"harmonic_oscillator\"\nparameters = {omega = 4}\nmethods = [\"rk4\"]\n"
+                                "dt = {per_period = 10}\nt_end = {periods = 3}\n", "o.toml");
+    CHECK(o.t_end == doctest::Approx(3 * std::numbers::pi / 2));
+    CHECK(o.dt[0] == doctest::Approx(std::numbers::pi / 20));
+    // No period (an unbound orbit), a misspelt key, a bad count: located, and said why.
+    CHECK(error_of(head + "parameters = {mu = 0.5}\ndt = 0.1\nt_end = {periods = 3}\n").rfind(
+              "scene.toml:5:9: 't_end' counts in the system's characteristic period, and it has none at these "
+              "parameters (orbital period", 0) == 0);
+    CHECK(error_of(head + "dt = {per_priod = 10}\nt_end = 1\n").rfind(
+              "scene.toml:3:19: unknown key 'per_priod' in 'dt'; did you mean 'per_period'?", 0) == 0);
+    CHECK(error_of(head + "dt = 0.1\nt_end = {periods = -2}\n") ==
+          "scene.toml:4:20: 't_end.periods' = -2; expected a finite number > 0");
 }
 
 }  // namespace test_program_test_scene

@@ -122,4 +122,57 @@ TEST_CASE("systems: a scene's own initial state replaces the default and drops t
     CHECK(p.energy(p.x0) == doctest::Approx(0.25 * 0.25 / 2 + 4 * 0.25 / 2));
 }
 
+TEST_CASE("systems: each states its characteristic period, and one period of a periodic orbit closes it") {
+    for (const system_entry& entry : systems()) {
+        CAPTURE(entry.name);
+        CHECK_FALSE(entry.period.meaning.empty());
+        const double t = period_of(entry, with_defaults(entry, {}, "test"));
+        CHECK(std::isfinite(t));
+        CHECK(t > 0);
+    }
+    // Exact solutions one period on are back at the start (Kepler at two scales, the oscillator at omega = 3).
+    const auto closes = [](const std::string& system, const parameter_values& given) {
+        const system_entry& entry = *find_system(system);
+        const problem p = make_problem(system, given, {}, {}, "test");
+        return relative_difference(p.exact(period_of(entry, with_defaults(entry, given, "test"))), p.x0);
+    };
+    CHECK(closes("kepler", {}) < 1e-12);
+    CHECK(closes("kepler", {{"scale", 3}, {"eccentricity", 0.9}}) < 1e-12);
+    CHECK(closes("harmonic_oscillator", {{"omega", 3}}) < 1e-12);
+    // Kepler at mu = 2 has no exact solution here; a 10th-order run over one
+    // period (a = mu (1 - e) / (2 mu - 1 - e), vis-viva) closes the orbit.
+    const system_entry& kepler = *find_system("kepler");
+    const double period = period_of(kepler, with_defaults(kepler, {{"mu", 2}}, "test"));
+    CHECK(period == doctest::Approx(two_pi * std::sqrt(0.4 * 0.4 * 0.4 / 2)).epsilon(1e-14));
+    const problem p = make_problem("kepler", {{"mu", 2}}, {}, {}, "test");
+    run_request rq;
+    rq.dt = period / 4000;
+    rq.timing_repeats = 0;
+    const run_result r = p.run(*resolve_method("sofroniou_spaletta_10", {}), rq, 0.0, period, p.x0);
+    CHECK(relative_difference(r.final_state, p.x0) < 1e-9);
+    // Unbound (mu below (1 + e) / 2 from this start): no period.
+    CHECK(period_of(kepler, with_defaults(kepler, {{"mu", 0.5}}, "test")) == 0);
+}
+
+TEST_CASE("systems: output columns count from 1, or name the bodies") {
+    CHECK(state_columns("henon_heiles", 2) == std::vector<std::string>{"q1", "q2", "p1", "p2"});
+    const auto planets = state_columns("outer_solar_system", 18);
+    REQUIRE(planets.size() == 36);
+    CHECK(planets[0] == "sun_x");
+    CHECK(planets[3] == "jupiter_x");
+    CHECK(planets[17] == "pluto_z");
+    CHECK(planets[18] == "sun_px");
+    CHECK(planets[22] == "jupiter_py");
+}
+
+TEST_CASE("systems: an unknown system or parameter gets the nearest names") {
+    CHECK_THROWS_WITH_AS(make_problem("kepplr", {}, {}, {}, "s.toml"),
+                         doctest::Contains("s.toml: unknown system 'kepplr'; did you mean 'kepler'? expected one of: "),
+                         sympl::invalid_argument);
+    CHECK_THROWS_WITH_AS(make_problem("pendulum", {{"lenght", 2}}, {}, {}, "s.toml"),
+                         "s.toml: pendulum has no parameter 'lenght'; did you mean 'length'? expected one of: mass, "
+                         "length, gravity",
+                         sympl::invalid_argument);
+}
+
 }  // namespace test_program_test_systems
