@@ -7,7 +7,6 @@
 // a separable Hamiltonian is the case dq_dt = dT/dp, dp_dt = -dV/dq
 // (Gould & Tobochnik, eq. 3.73). Damping and driving enter through a(x, v, t).
 #include <concepts>
-#include <type_traits>
 #include <utility>
 
 #include <Eigen/Core>
@@ -90,20 +89,12 @@ template <class H, class Vec = Eigen::VectorXd>
 struct hamilton_equations {
     H hamiltonian;
     static constexpr bool velocity_dependent = false;  // dp/dt = -dV/dq(q) never depends on p
-    static constexpr bool generic_kinetic =
-        !has_analytic_velocity<H, Vec> && std::is_floating_point_v<scalar_of<Vec>>;
     mutable quadratic_kinetic<Vec> kinetic;  // what T was found to be, for the last dimension
 
     template <class V, class T>
     void dq_dt(const V&, const V& p, T, V& out) const {
-        if constexpr (generic_kinetic && std::same_as<V, Vec>) {
-            if (kinetic.dimension() != p.size()) kinetic.recognise(hamiltonian, p.size());
-            if (kinetic.applies()) {
-                kinetic.velocity(p, out);
-                return;
-            }
-        }
-        velocity(hamiltonian, p, out);
+        if constexpr (std::same_as<V, Vec>) recognised_velocity(hamiltonian, kinetic, p, out);
+        else velocity(hamiltonian, p, out);
     }
     template <class V, class T>
     void dp_dt(const V& q, const V&, T, V& out) const { force(hamiltonian, q, out); }
