@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <type_traits>
 
 #include <sympl/sympl.hpp>
 #include <sympl/hamiltonians/damped_driven_oscillator.hpp>
@@ -44,6 +45,37 @@ TEST_CASE("equations_of_motion: a separable Hamiltonian gives Hamilton's equatio
     e.dp_dt(x.q, x.p, 0.0, dp);
     CHECK(dq[0] == rhs.q[0]);
     CHECK(dp[0] == rhs.p[0]);
+}
+
+TEST_CASE("equations_of_motion: a generic quadratic T gives dq/dt = M^-1 p, recognised once per dimension") {
+    // T = sum p_i^2 / (2 m_i) written generically: recognised as diagonal, so
+    // dq/dt is the product p_i / m_i, equal to the gradient of T to rounding.
+    // A T that is not quadratic (sqrt(1 + |p|^2)) stays a gradient.
+    using Vec = Eigen::VectorXd;
+    using DState = phase_space<double>;
+    const auto masses = [](const auto& p) {
+        using S = typename std::decay_t<decltype(p)>::Scalar;
+        S t(0);
+        for (Eigen::Index i = 0; i < p.size(); ++i) t += p[i] * p[i] / (2.0 * (1.0 + 0.5 * double(i)));
+        return t;
+    };
+    const auto cosine = [](const auto& q) { using std::cos; return 1.0 - cos(q[0]); };
+    const auto quadratic = equations_of<DState>(make_hamiltonian(masses, cosine));
+    const auto relativistic = equations_of<DState>(
+        make_hamiltonian([](const auto& p) { using std::sqrt; return sqrt(1.0 + p.squaredNorm()); }, cosine));
+    for (Eigen::Index n : {3, 40}) {
+        Vec q = Vec::Constant(n, 0.3), p(n), v, expected(n), w;
+        for (Eigen::Index i = 0; i < n; ++i) p[i] = 0.7 * std::sin(1.3 * double(i + 1));
+        for (Eigen::Index i = 0; i < n; ++i) expected[i] = p[i] / (1.0 + 0.5 * double(i));
+        quadratic.dq_dt(q, p, 0.0, v);
+        CAPTURE(n);
+        CHECK(quadratic.kinetic.recognised() == quadratic_kinetic<Vec>::form::diagonal);
+        CHECK(quadratic.kinetic.dimension() == n);
+        CHECK((v - expected).norm() <= 4e-16 * expected.norm());
+        relativistic.dq_dt(q, p, 0.0, w);
+        CHECK(relativistic.kinetic.recognised() == quadratic_kinetic<Vec>::form::not_quadratic);
+        CHECK((w - p / std::sqrt(1.0 + p.squaredNorm())).norm() <= 1e-15 * w.norm());
+    }
 }
 
 TEST_CASE("damped_driven_oscillator: the exact solution solves m x'' + b x' + k x = F0 cos(W t) in every regime") {

@@ -5,10 +5,13 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <type_traits>
 #include <utility>
 
 #include <sympl/core/reverse_mode.hpp>
 #include <sympl/core/error.hpp>
+#include <sympl/hamiltonians/charged_particle.hpp>
+#include <sympl/hamiltonians/double_pendulum.hpp>
 #include <sympl/hamiltonians/double_well.hpp>
 #include <sympl/hamiltonians/fpu_beta.hpp>
 #include <sympl/hamiltonians/harmonic_oscillator.hpp>
@@ -17,6 +20,7 @@
 #include <sympl/hamiltonians/morse.hpp>
 #include <sympl/hamiltonians/outer_solar_system.hpp>
 #include <sympl/hamiltonians/pendulum.hpp>
+#include <sympl/hamiltonians/product_hamiltonian.hpp>
 #include <sympl/hamiltonians/relativistic_pendulum.hpp>
 #include <sympl/hamiltonians/stiff_fpu.hpp>
 #include <sympl/hamiltonians/toda.hpp>
@@ -38,6 +42,30 @@ void check_force(const H& h, const Vec& q) {
     h.force(q, f);
     CAPTURE(q.size());
     CHECK((-g - f).norm() <= 1e-14 * f.norm());
+}
+
+// dH/dq and dH/dp of a Hamiltonian that does not split (energy(q, p)) by
+// reverse mode, each with the other half of the state held fixed, against the
+// system's analytic gradients.
+template <class H>
+void check_general(const H& h, const Vec& q, const Vec& p) {
+    Vec gq, gp, aq, ap;
+    reverse_gradient(
+        [&h, &p](const auto& x) {
+            using X = std::decay_t<decltype(x)>;
+            return h.energy(x, X(p.template cast<typename X::Scalar>()));
+        },
+        q, gq);
+    reverse_gradient(
+        [&h, &q](const auto& x) {
+            using X = std::decay_t<decltype(x)>;
+            return h.energy(X(q.template cast<typename X::Scalar>()), x);
+        },
+        p, gp);
+    h.dH_dq(q, p, aq);
+    h.dH_dp(q, p, ap);
+    CHECK((gq - aq).norm() <= 1e-14 * aq.norm());
+    CHECK((gp - ap).norm() <= 1e-14 * ap.norm());
 }
 
 Vec wave(Eigen::Index n, double k, double amplitude) {
@@ -110,6 +138,15 @@ TEST_CASE("reverse mode: the potential of every ready-made system against its an
     const hamiltonians::outer_solar_system s{};
     check_force(s, Vec(s.initial_state().q));
     for (Eigen::Index n : {21, 1000, 100000}) check_force(hamiltonians::fpu_beta{0.8}, wave(n, 0.7, 0.5));
+}
+
+TEST_CASE("reverse mode: dH/dq and dH/dp of every ready-made general Hamiltonian against its analytic ones") {
+    // damped_driven_oscillator is given by its acceleration (Newton's form):
+    // it has no potential or energy to differentiate.
+    check_general(hamiltonians::charged_particle{1.3, 0.9, 1.7, 1.2, 0.4}, wave(2, 0.7, 0.8), wave(2, 1.3, 0.6));
+    check_general(hamiltonians::double_pendulum{1.0, 1.4, 0.8, 1.1, 9.81}, wave(2, 0.7, 0.8), wave(2, 1.3, 0.6));
+    check_general(hamiltonians::product_hamiltonian{}, wave(3, 0.7, 0.8), wave(3, 1.3, 0.6));
+    check_general(hamiltonians::product_hamiltonian{}, wave(40, 0.7, 0.8), wave(40, 1.3, 0.6));
 }
 
 TEST_CASE("reverse mode: one recording per gradient, its length linear in the dimension") {

@@ -13,6 +13,7 @@
 
 #include "hamiltonian.hpp"
 #include "phase_space.hpp"
+#include "quadratic_kinetic.hpp"
 
 namespace sympl {
 
@@ -81,15 +82,22 @@ auto make_newtonian(Acceleration a) {
 }
 
 // Hamilton's equations of a separable Hamiltonian (Gould & Tobochnik eq. 3.73) in pair form.
-template <class H>
+// A generic T quadratic in p is recognised once per dimension
+// (quadratic_kinetic.hpp), as the splitting steppers do: dq/dt is then
+// M^-1 p, not a gradient of T at every evaluation.
+template <class H, class Vec = Eigen::VectorXd>
 struct hamilton_equations {
     H hamiltonian;
     static constexpr bool velocity_dependent = false;  // dp/dt = -dV/dq(q) never depends on p
+    mutable quadratic_kinetic<Vec> kinetic;  // what T was found to be, for the last dimension
 
-    template <class Vec, class T>
-    void dq_dt(const Vec&, const Vec& p, T, Vec& out) const { velocity(hamiltonian, p, out); }
-    template <class Vec, class T>
-    void dp_dt(const Vec& q, const Vec&, T, Vec& out) const { force(hamiltonian, q, out); }
+    template <class V, class T>
+    void dq_dt(const V&, const V& p, T, V& out) const {
+        if constexpr (std::same_as<V, Vec>) recognised_velocity(hamiltonian, kinetic, p, out);
+        else velocity(hamiltonian, p, out);
+    }
+    template <class V, class T>
+    void dp_dt(const V& q, const V&, T, V& out) const { force(hamiltonian, q, out); }
 };
 
 // The equations of motion of `system`: itself when it already is one, Hamilton's
@@ -99,7 +107,7 @@ auto equations_of(System system) {
     if constexpr (equations_of_motion<System, State>)
         return system;
     else
-        return hamilton_equations<System>{std::move(system)};
+        return hamilton_equations<System, typename State::vector>{std::move(system), {}};
 }
 
 }  // namespace sympl

@@ -105,18 +105,20 @@ constexpr int autodiff_width() {
     return (n != Eigen::Dynamic && n <= 16) ? n : 8;
 }
 
-// out = d fn / d x: by reverse mode where forward mode would take more than
+// out = factor * d fn / d x (factor -1 for a force: exactly the negated
+// gradient, without a pass of its own; 1 for scalars that are not plain
+// floating-point numbers): by reverse mode where forward mode would take more than
 // one pass of W directions (one recording and one sweep, whatever n), else by
 // forward mode in chunks of W. Scalars that are not plain floating-point types
 // (dual numbers, SIMD batches) stay in forward mode. Workspaces are reused
 // across calls (no heap allocation once sized).
 template <class Vec, class Fn>
-void gradient(const Fn& fn, const Vec& x, Vec& out) {
+void gradient(const Fn& fn, const Vec& x, Vec& out, scalar_of<Vec> factor = scalar_of<Vec>(1)) {
     using S = scalar_of<Vec>;
     constexpr int W = autodiff_width<Vec>();
     if constexpr (std::is_floating_point_v<S>) {
         if (x.size() > W) {
-            reverse_gradient(fn, x, out);
+            reverse_gradient(fn, x, out, factor);
             return;
         }
     }
@@ -133,7 +135,8 @@ void gradient(const Fn& fn, const Vec& x, Vec& out) {
         const D y = fn(xd);
         for (int k = 0; k < W; ++k)
             if (start + k < n) {
-                out[start + k] = y.grad[k];
+                if constexpr (std::is_floating_point_v<S>) out[start + k] = factor * y.grad[k];
+                else out[start + k] = y.grad[k];  // factor 1: force() negates these itself
                 xd[start + k].grad[k] = S(0);
             }
     }
@@ -150,8 +153,12 @@ template <class H, class Vec>
     } else if constexpr (has_force_value<H, Vec>) {
         f = h.force(q);
     } else {
-        detail::gradient([&h](const auto& x) { return h.potential(x); }, q, f);
-        f = -f;
+        if constexpr (std::is_floating_point_v<scalar_of<Vec>>) {
+            detail::gradient([&h](const auto& x) { return h.potential(x); }, q, f, scalar_of<Vec>(-1));
+        } else {
+            detail::gradient([&h](const auto& x) { return h.potential(x); }, q, f);
+            f = -f;
+        }
     }
 }
 

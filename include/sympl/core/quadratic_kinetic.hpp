@@ -117,4 +117,20 @@ private:
     form form_ = form::unknown;
 };
 
+// dT/dp: M^-1 p where `kinetic` finds T quadratic (measured here at the first
+// call with a new dimension), else the Hamiltonian's own velocity or a
+// gradient of its generic T. For the steppers that hold a quadratic_kinetic.
+template <class H, class Vec>
+[[gnu::always_inline]] inline void recognised_velocity(const H& h, quadratic_kinetic<Vec>& kinetic, const Vec& p,
+                                                        Vec& v) {
+    if constexpr (!has_analytic_velocity<H, Vec> && std::is_floating_point_v<scalar_of<Vec>>) {
+        if (kinetic.dimension() != p.size()) kinetic.recognise(h, p.size());
+        if (kinetic.applies()) {
+            kinetic.velocity(p, v);
+            return;
+        }
+    }
+    sympl::velocity(h, p, v);
+}
+
 }  // namespace sympl

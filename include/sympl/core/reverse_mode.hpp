@@ -50,9 +50,9 @@ struct taped {
     taped(const E& e) : value(e.value) {
         auto* tape = detail::reverse_tape<T>::active();
         if (tape == nullptr) return;
-        tape->reserve(E::leaves);
-        e.emit(*tape, T(1));
-        node = tape->close_statement();
+        auto w = tape->open_statement(E::leaves);
+        e.emit(w, T(1));
+        node = tape->close_statement(w);
     }
     template <class Tape>
     void emit(Tape& tape, T multiplier) const {
@@ -258,11 +258,12 @@ auto hypot(U x, const A& y) { return hypot(taped<reverse_value_of<A>>(x), y); }
 template <reverse_expression A>
 bool isfinite(const A& a) { return std::isfinite(a.value); }
 
-// out = d fn / d x by one recording and one backward sweep. The tape and the
+// out = factor * d fn / d x by one recording and one backward sweep (the
+// factor as the output's adjoint: a force is -dV/dq without a pass of its own). The tape and the
 // workspace are this thread's and keep their memory (no allocation once warm).
 // If fn throws, the recording is abandoned and the exception goes on.
 template <class Vec, class Fn>
-void reverse_gradient(const Fn& fn, const Vec& x, Vec& out) {
+void reverse_gradient(const Fn& fn, const Vec& x, Vec& out, typename Vec::Scalar factor = 1) {
     using T = typename Vec::Scalar;
     using A = taped<T>;
     using AVec = Eigen::Matrix<A, Vec::RowsAtCompileTime, 1>;
@@ -279,7 +280,7 @@ void reverse_gradient(const Fn& fn, const Vec& x, Vec& out) {
         tape.abandon();
         throw;
     }
-    tape.sweep(y.node);
+    tape.sweep(y.node, factor);
     if (out.size() != n) out.resize(n);
     for (Eigen::Index i = 0; i < n; ++i) out[i] = tape.input_adjoint(std::size_t(i));
 }

@@ -50,45 +50,55 @@ public:
             throw invalid_argument(std::string(who) + ": " + std::to_string(n) +
                                    " independent variables; expected fewer than 2^31");
         if (first_.size() < n + 2) first_.resize(std::max<std::size_t>(1024, 2 * (n + 2)));
-        std::fill(first_.begin(), first_.begin() + std::ptrdiff_t(n + 2), 0);
+        first_[n + 1] = 0;  // where the first statement's operations start; inputs have none, never read
         inputs_ = n;
         statements_ = n + 1;
-        operations_ = statement_start_ = 0;
+        operations_ = 0;
         active() = this;
     }
 
-    // Room for the next statement's operations, at most `count`; emit() then
-    // writes without a check of its own.
-    void reserve(std::size_t count) {
+    // Writes one statement's operations through a cursor that stays in
+    // registers while the expression emits (a member of the tape would be
+    // stored and reloaded at every operation). A node met twice in a row
+    // within a statement (r * r) is one operation: one update of its adjoint
+    // instead of two that would wait on each other.
+    struct writer {
+        tape_operation<T>* cursor;
+        tape_operation<T>* start;
+        std::int32_t last = 0;
+        void emit(std::int32_t node, T multiplier) {
+            if (node == last) {
+                cursor[-1].multiplier += multiplier;
+                return;
+            }
+            *cursor++ = {multiplier, node};
+            last = node;
+        }
+    };
+    // Room for a statement of at most `count` operations.
+    writer open_statement(std::size_t count) {
         if (operations_ + count > ops_.size()) [[unlikely]]
             grow(operations_ + count);
+        tape_operation<T>* at = ops_.data() + operations_;
+        return {at, at};
     }
-    // A node met twice in a row within a statement (r * r) is one operation:
-    // one update of its adjoint instead of two that would wait on each other.
-    void emit(std::int32_t node, T multiplier) {
-        if (operations_ > statement_start_ && ops_[operations_ - 1].node == node) {
-            ops_[operations_ - 1].multiplier += multiplier;
-            return;
-        }
-        ops_[operations_++] = {multiplier, node};
-    }
-    // Ends the statement whose operations were just emitted; 0 when there were
-    // none (a value that depends on no variable is a constant).
-    std::int32_t close_statement() {
-        if (operations_ == statement_start_) return 0;
+    // Ends the statement `w` wrote; 0 when it has no operations (a value that
+    // depends on no variable is a constant).
+    std::int32_t close_statement(const writer& w) {
+        if (w.cursor == w.start) return 0;
         if (statements_ + 2 > first_.size()) [[unlikely]]
             grow_statements();
+        operations_ += std::size_t(w.cursor - w.start);
         first_[statements_ + 1] = std::int32_t(operations_);
-        statement_start_ = operations_;
         return std::int32_t(statements_++);
     }
 
-    // Sweeps backwards from `output` and ends the recording; the adjoint of
+    // Sweeps backwards from `output`, whose adjoint is `seed`, and ends the recording; the adjoint of
     // input i (0-based) is then input_adjoint(i).
-    void sweep(std::int32_t output) {
+    void sweep(std::int32_t output, T seed = T(1)) {
         active() = nullptr;
         adjoints_.assign(statements_, T(0));
-        if (output > 0) adjoints_[std::size_t(output)] = T(1);
+        if (output > 0) adjoints_[std::size_t(output)] = seed;
         T* adj = adjoints_.data();
         const tape_operation<T>* op = ops_.data();
         const std::int32_t* first = first_.data();
@@ -118,7 +128,7 @@ private:
     std::vector<std::int32_t> first_;  // statement s's operations are [first_[s], first_[s + 1])
     std::vector<tape_operation<T>> ops_;
     std::vector<T> adjoints_;
-    std::size_t inputs_ = 0, statements_ = 0, operations_ = 0, statement_start_ = 0;
+    std::size_t inputs_ = 0, statements_ = 0, operations_ = 0;
 };
 
 }  // namespace sympl::detail

@@ -36,6 +36,7 @@
 #include "../core/hamiltonian.hpp"
 #include "../core/linear_velocity.hpp"
 #include "../core/phase_space.hpp"
+#include "../core/quadratic_kinetic.hpp"
 #include "../drivers/controlled.hpp"
 #include "rkn_tables.hpp"
 
@@ -178,7 +179,7 @@ private:
     // own: an evaluation of the run's steps, else of an interpolation.
     void force_at(workspace& w, const vector& q, int i, bool own) {
         force(h_, q, w.k[i]);
-        velocity(h_, w.k[i], w.u[i]);
+        recognised_velocity(h_, kinetic_, w.k[i], w.u[i]);
         if (own) ++force_evaluations_, ++velocity_evaluations_;
         else ++interpolation_forces_;
     }
@@ -210,7 +211,7 @@ private:
     void advance_trial(const State& x, scalar dt, bool estimate) {
         const Eigen::Index n = x.size();
         size_workspace(n);
-        velocity(h_, x.p, w_.v0);
+        recognised_velocity(h_, kinetic_, x.p, w_.v0);
         ++velocity_evaluations_;
         if (known_[0].holds(x.q)) {
             w_.k[0] = known_[0].k, w_.u[0] = known_[0].u;
@@ -274,6 +275,7 @@ private:
     };
 
     H h_;
+    quadratic_kinetic<vector> kinetic_;  // a generic T found quadratic: M^-1 p, not a gradient per stage
     std::string who_;
     rkn_coefficients<P, scalar> co_;
     dense_weights dense_ = make_dense();
