@@ -7,8 +7,9 @@
 #include <limits>
 
 #include <sympl/sympl.hpp>
-#include <sympl/analysis/convergence.hpp>
 #include <sympl/charged/boris.hpp>
+
+#include "measured_orders.hpp"
 
 namespace test_charged_test_boris {  // one per file: the tests build in batches (CMakeLists.txt)
 
@@ -19,15 +20,8 @@ TEST_CASE("Boris: second order on the radial mirror field with a confining E") {
     const particle a{.mass = 1, .charge = 1};
     const radial_mirror_field f{.field = 1, .field_length = 1, .confinement = 0.2};
     const kinetic_state<> x0(vec3<>(1, 0, 0), vec3<>(0.4, 1, 0.3));
-    const double t_end = 5;
-    const order_measurement m = measure_order(
-        [&](std::size_t n) {
-            boris_stepper<radial_mirror_field> s(a, f);
-            kinetic_state<> x = x0;
-            for (std::size_t i = 0; i < n; ++i) s.step(x, t_end / double(n));
-            return x;
-        },
-        t_end, {.min_steps = 32, .max_steps = 1 << 12, .floor = 1e-10});
+    const order_measurement m =
+        testing::order_of([&] { return boris_stepper<radial_mirror_field>(a, f); }, x0, 5, 32);
     CAPTURE(m.order);
     CHECK(m.converged);
     CHECK(std::abs(m.order - 2) < 0.15);

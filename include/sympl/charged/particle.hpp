@@ -52,11 +52,11 @@ vec3<> lorentz_acceleration(const particle& a, const F& f, const vec3<>& x, cons
 // The canonical momentum p = m v + e A(x) of a static field, and back.
 template <solvable_potentials F>
 canonical_state<> to_canonical(const particle& a, const F& f, const kinetic_state<>& k) {
-    return {k.q, a.mass * k.p + a.charge * vec3<>(f.A(k.q))};
+    return canonical_state<>(k.q, vec3<>(a.mass * k.p + a.charge * vec3<>(f.A(k.q))));
 }
 template <solvable_potentials F>
 kinetic_state<> to_kinetic(const particle& a, const F& f, const canonical_state<>& c) {
-    return {c.q, (c.p - a.charge * vec3<>(f.A(c.q))) / a.mass};
+    return kinetic_state<>(c.q, vec3<>((c.p - a.charge * vec3<>(f.A(c.q))) / a.mass));
 }
 
 // m |v|^2 / 2 + e phi(x): conserved in a static field.
