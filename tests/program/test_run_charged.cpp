@@ -45,7 +45,7 @@ TEST_CASE("run_charged: the charged methods at their order on charged_particle, 
     }
 }
 
-TEST_CASE("run_charged: charged_uniform runs the pushers and the canonical splitting; refusals name the reason") {
+TEST_CASE("run_charged: charged_uniform runs the pushers and the canonical splitting, refusals name the reason") {
     const problem p = make_problem("charged_uniform", {}, {}, {}, "test");
     for (const char* method : {"boris", "boris(relativistic = true)", "cartesian_split(kahan_li_8)", "gauss_6",
                                "odeint_rk4"}) {
