@@ -80,11 +80,11 @@ public:
     // The exact flow of U over time t: a kick of p_r, p_z and a turn of theta.
     void kick(double t, cylindrical_state& c) {
         const axial_values a = field_.axial(c.r, c.z);
-        const double e = particle_.charge, m = particle_.mass;
-        const double w = (c.p_theta / c.r - e * a.A) / m;  // the angular velocity times r
-        c.p_r -= t * (w * (-c.p_theta / (c.r * c.r) - e * a.dA_dr) + e * a.dphi_dr);
+        const double e = particle_.charge, m = particle_.mass, inv_r = 1 / c.r, l = c.p_theta * inv_r;
+        const double w = (l - e * a.A) / m;  // the angular velocity times r
+        c.p_r -= t * (w * (-l * inv_r - e * a.dA_dr) + e * a.dphi_dr);
         if constexpr (Dim == 3) c.p_z -= t * (-w * e * a.dA_dz + e * a.dphi_dz);
-        c.theta += t * w / c.r;
+        c.theta += t * w * inv_r;
         ++kicks_;
     }
     void drift(double t, cylindrical_state& c) const {
