@@ -5,8 +5,9 @@
 // Odeint's controlled fehlberg78 (abs = rel tolerance 1e-3 .. 1e-14, first
 // step t/1000, an observer every step). Max energy error from an observed
 // run; time the median of 5 interleaved rounds, each run repeated to 5 ms.
-// Prints CSV (method, dt or tolerance, max_energy_error, seconds); the time to
-// a level is read off by log-log interpolation between the bracketing runs.
+// Prints CSV (method, dt or tolerance, max_energy_error, seconds), then for
+// 1e-8 and 1e-10 the fastest of each side, read off by log-log interpolation
+// between the bracketing runs, and their ratio.
 // What `sympl report` on the scene with t_end = 2000 measures, without the
 // program (docs/charged-particles.md).
 //   bench_charged_accuracy > runs.csv
@@ -17,6 +18,7 @@
 #include <cstdio>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <boost/numeric/odeint.hpp>
@@ -39,6 +41,7 @@ double now() {
     return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 struct run {
+    run(std::string m, double p, std::function<double(bool)> g) : method(std::move(m)), param(p), go(std::move(g)) {}
     std::string method;
     double param;
     std::function<double(bool)> go;
@@ -133,5 +136,30 @@ int main() {
         std::sort(r.times.begin(), r.times.end());
         std::printf("%s,%.4g,%.3e,%.4g\n", r.method.c_str(), r.param, r.err,
                     r.times.empty() ? NAN : r.times[r.times.size() / 2]);
+    }
+    // Time to each level per method: log-log interpolation between the two
+    // runs of its sweep (coarse to fine) that bracket it, as the report reads it.
+    for (const double level : {1e-8, 1e-10}) {
+        std::string best_sympl, best_odeint;
+        double t_sympl = INFINITY, t_odeint = INFINITY;
+        for (std::size_t i = 0; i < runs.size(); ++i) {
+            const run& a = runs[i];
+            const bool first = i == 0 || runs[i - 1].method != a.method;
+            double t = INFINITY;
+            if (first && a.err <= level && !a.times.empty()) t = a.times[a.times.size() / 2];
+            if (i + 1 < runs.size() && runs[i + 1].method == a.method) {
+                const run& b = runs[i + 1];
+                if (a.err > level && level >= b.err && !a.times.empty() && !b.times.empty()) {
+                    const double f = std::log(a.err / level) / std::log(a.err / b.err);
+                    const double ta = a.times[a.times.size() / 2], tb = b.times[b.times.size() / 2];
+                    t = std::exp(std::log(ta) + f * (std::log(tb) - std::log(ta)));
+                }
+            }
+            const bool odeint_run = a.method.rfind("odeint", 0) == 0;
+            if (odeint_run && t < t_odeint) t_odeint = t, best_odeint = a.method;
+            if (!odeint_run && t < t_sympl) t_sympl = t, best_sympl = a.method;
+        }
+        std::printf("# max energy error %.0e: sympl %s %.3g ms, Odeint %s %.3g ms, Odeint / sympl = %.2fx\n", level,
+                    best_sympl.c_str(), 1e3 * t_sympl, best_odeint.c_str(), 1e3 * t_odeint, t_odeint / t_sympl);
     }
 }
