@@ -14,8 +14,12 @@
 // about the origin, so the canonical angular momentum x p_y - y p_x is a
 // second invariant (a quadratic one, which Gauss collocation keeps exactly).
 #include <cmath>
+#include <limits>
 
 #include <Eigen/Core>
+
+#include <sympl/charged/fields.hpp>
+#include <sympl/charged/particle.hpp>
 
 namespace sympl::hamiltonians {
 
@@ -30,6 +34,13 @@ struct charged_particle {
     // g(r^2) and g' = dg/d(r^2) of A = g (-y, x).
     template <class S> S gauge(const S& r2) const { return S(field / 2) * (1 + r2 / S(2 * field_length * field_length)); }
     double gauge_slope() const { return field / (4 * field_length * field_length); }
+
+    // The particle and its field in 3D, for the pushers and splittings of
+    // sympl/charged/ (e phi = (k/2) r^2: the field's E = -(k/e) (x, y, 0)).
+    charged::particle particle() const {
+        return {.mass = mass, .charge = charge, .speed_of_light = std::numeric_limits<double>::infinity()};
+    }
+    charged::radial_mirror_field electromagnetic_field() const { return {field, field_length, confinement / charge}; }
 
     // B_z at q (what the field is; not needed by the dynamics).
     template <class V> auto magnetic_field(const V& q) const {

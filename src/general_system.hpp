@@ -28,6 +28,18 @@ struct general_system {
         sympl::dH_dp(h, q, p, out);
     }
 
+    // A charged particle's particle and field, where H gives them (run_charged.hpp).
+    auto particle() const
+        requires requires(const H& x) { x.particle(); }
+    {
+        return h.particle();
+    }
+    auto electromagnetic_field() const
+        requires requires(const H& x) { x.electromagnetic_field(); }
+    {
+        return h.electromagnetic_field();
+    }
+
     // The equations of motion (equations_of_motion.hpp); dp/dt depends on p.
     template <class V, class T>
     void dq_dt(const V& q, const V& p, T, V& out) const {

@@ -113,6 +113,28 @@ method_spec on_extended_phase_space(const std::string& name, method_kind kind, s
     return spec(name, kind, inner->coefficients);
 }
 
+// cartesian_split(<table>): a symmetric composition of leapfrog steps, as
+// the library checks it; cylindrical_split(<table>): any kick-drift table
+// without force-gradient kicks.
+method_spec charged_split(const std::string& name, charged_scheme scheme, std::size_t prefix,
+                          const std::map<std::string, table>& inline_tables) {
+    const std::string inner_name = trimmed(name.substr(prefix, name.size() - prefix - 1));
+    const bool composition = scheme == charged_scheme::cartesian_split;
+    const std::string usage = "; expected " + name.substr(0, prefix) +
+                              (composition ? "<a symmetric composition of leapfrog steps: leapfrog_kdk, yoshida_6, "
+                                             "kahan_li_8, ...>)"
+                                           : "<a table of kicks and drifts: leapfrog_kdk, blanes_moan_srkn11b, ...>)");
+    const auto inner = resolve_method(inner_name, inline_tables);
+    if (!inner || inner->kind != method_kind::table || inner->extrapolation_columns || inner->compensated ||
+        inner->coefficients->has_force_gradient())
+        throw invalid_argument("method '" + name + "': '" + inner_name + "' is not a plain table" + usage);
+    if (composition)
+        sympl::detail::leapfrog_composition_weights(*inner->coefficients, "method '" + name + "'");  // throws naming it
+    method_spec m = spec(name, method_kind::charged, inner->coefficients);
+    m.parameters.scheme = scheme;
+    return m;
+}
+
 // wh(<table>[, corrector = K][, kernel = composition|lazy][, coordinates =
 // jacobi]): any plain table (the
 // catalog's or the scene's) without force-gradient kicks; its drifts become
@@ -202,6 +224,10 @@ std::optional<method_spec> resolve_method(const std::string& name, const std::ma
         return on_extended_phase_space(name, method_kind::tao, 4, inline_tables);
     if (name.size() > 14 && name.rfind("semiexplicit(", 0) == 0 && name.back() == ')')
         return on_extended_phase_space(name, method_kind::semiexplicit, 13, inline_tables);
+    if (name.size() > 17 && name.rfind("cartesian_split(", 0) == 0 && name.back() == ')')
+        return charged_split(name, charged_scheme::cartesian_split, 16, inline_tables);
+    if (name.size() > 19 && name.rfind("cylindrical_split(", 0) == 0 && name.back() == ')')
+        return charged_split(name, charged_scheme::cylindrical_split, 18, inline_tables);
     for (const method_kind_entry& k : method_kind_entries)
         for (const named_method& member : k.members)
             if (name == member.name) {

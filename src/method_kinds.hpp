@@ -29,13 +29,15 @@ struct wisdom_holman_options;  // planetary/wisdom_holman_plan.hpp
 namespace sympl::app {
 
 enum class method_kind {
-    table, processed, logh, classic, odeint, gauss, tao, semiexplicit, dprkn, wisdom_holman,
+    table, processed, logh, classic, odeint, gauss, tao, semiexplicit, dprkn, wisdom_holman, charged,
 };
-inline constexpr std::size_t method_kind_count = std::size_t(method_kind::wisdom_holman) + 1;
+inline constexpr std::size_t method_kind_count = std::size_t(method_kind::charged) + 1;
 
 enum class step_control { fixed, controlled };  // controlled: swept over tolerances instead of step sizes
 enum class odeint_stepper { rk4, dopri5, fehlberg78, bulirsch_stoer };
 enum class rkn_pair { dprkn6, dprkn8, dprkn12 };
+// charged: the pusher or splitting (sympl/charged/).
+enum class charged_scheme { boris, relativistic, cartesian_split, cylindrical_split };
 
 // What a named member of a family adds to its kind (the rest is the row's).
 struct method_parameters {
@@ -43,6 +45,7 @@ struct method_parameters {
     int stages = 0;                                // gauss: s stages, order 2s
     rkn_pair pair = rkn_pair::dprkn6;              // dprkn
     odeint_stepper stepper = odeint_stepper::rk4;  // odeint
+    charged_scheme scheme = charged_scheme::boris;  // charged
     friend constexpr bool operator==(const method_parameters&, const method_parameters&) = default;
 };
 
@@ -103,6 +106,15 @@ inline constexpr std::array dprkn_members{
                  "not symplectic: dprkn12 with its step size controlled, absolute = relative tolerance"},
 };
 
+inline constexpr std::array charged_members{
+    named_method{"boris", {.scheme = charged_scheme::boris},
+                 "Boris pusher (Boris 1970), drift-kick-drift: explicit, order 2, volume-preserving, not symplectic; "
+                 "Newton's motion only"},
+    named_method{"boris(relativistic = true)", {.scheme = charged_scheme::relativistic},
+                 "relativistic pusher of Higuera & Cary (2017), drift-kick-drift: explicit, order 2, volume-preserving, "
+                 "not symplectic; Boris's at |v| << c"},
+};
+
 inline constexpr const char* extrapolation_not_resumable =
     "its extrapolation combines runs that a checkpoint does not hold";
 
@@ -150,6 +162,14 @@ inline constexpr std::array<method_kind_entry, method_kind_count> method_kind_en
                     "(planetary/wisdom_holman_stepper.hpp); leapfrog_kdk, saba_2, ... (tables for T = p^2/2 lose their extra order "
                     "here); a symmetric table takes a symplectic corrector of order K = 3, 5, 7, 9, 11 or 17, "
                     "leapfrog_dkd a kernel too (lazy: Jacobi coordinates only)"},
+    {.kind = method_kind::charged, .label = "charged", .members = charged_members,
+     .requirement = needs::charged_particle,
+     .description = "boris, boris(relativistic = true), cartesian_split(<table>), cylindrical_split(<table>): a charged "
+                    "particle's pushers and explicit symplectic splittings (sympl/charged/); cartesian_split composes "
+                    "the exactly solvable parts (p_i - e A_i)^2/2m by a symmetric composition of leapfrog steps "
+                    "(yoshida_6, kahan_li_8, ...), cylindrical_split runs any kick-drift table (blanes_moan_srkn11b, "
+                    "...) in cylindrical coordinates for a field symmetric about z; both symplectic, Newton's motion "
+                    "only"},
 }};
 
 constexpr const method_kind_entry& entry_of(method_kind kind) { return method_kind_entries[std::size_t(kind)]; }
@@ -211,6 +231,7 @@ struct method_spec {
     bool composition_kernel = false;
     bool lazy_kernel = false;           // Jacobi coordinates only
     bool jacobi = false;                // wh(..., coordinates = jacobi)
+    // charged: cartesian_split(<table>) and cylindrical_split(<table>) set parameters.scheme and coefficients.
 };
 
 // Whether the method is swept over tolerances (its step size controlled)

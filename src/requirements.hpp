@@ -23,6 +23,7 @@ struct system_form {
     bool general_hamiltonian = false;    // any H(q, p), separable or not: Gauss-Legendre, Tao, semiexplicit
     bool quadratic_kinetic = false;      // separable with T quadratic in p (dq/dt linear in p): the RKN pairs
     bool planetary = false;              // a star and planets with masses and G: Wisdom-Holman splitting
+    bool charged = false;                // a charged particle in a field (particle(), electromagnetic_field()): sympl/charged/
 };
 
 enum class needs {
@@ -36,6 +37,7 @@ enum class needs {
     general_hamiltonian,  // any H(q, p) (general_hamiltonian.hpp), a separable one too
     quadratic_kinetic,    // a separable Hamiltonian whose T is quadratic in p: q'' = F(q) (rkn_pairs.hpp)
     planetary,            // point masses about a star, with `mass` (star first) and `G` (planetary/wisdom_holman_stepper.hpp)
+    charged_particle,     // a charged particle with particle() and electromagnetic_field() (charged/particle.hpp, charged/fields.hpp)
 };
 
 struct requirement {
@@ -112,6 +114,12 @@ inline constexpr std::array requirements{
                     return f.planetary ? ""
                                        : "needs a planetary system (a star and planets with masses and G; "
                                          "outer_solar_system); this system is not one (use the table itself)";
+                }},
+    requirement{needs::charged_particle,
+                [](const system_form& f) -> const char* {
+                    return f.charged ? ""
+                                     : "needs a charged particle in an electromagnetic field (charged_particle, "
+                                       "charged_uniform); this system is not one";
                 }},
 };
 

@@ -62,6 +62,10 @@ constexpr system_form form_of(bool possible = false) {
                 std::size(sys.mass);
                 double(sys.mass[0]);
                 double(sys.G);
+            },
+            .charged = requires(const Sys& sys) {
+                sys.particle();
+                sys.electromagnetic_field();
             }};
 }
 

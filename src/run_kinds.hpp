@@ -11,6 +11,7 @@
 #include <string>
 #include <utility>
 
+#include "run_charged.hpp"
 #include "run_context.hpp"
 #include "run_general.hpp"
 #include "run_planetary.hpp"

@@ -6,6 +6,12 @@
 // Odeint, the 113-bit order measurement (analysis/table_order.hpp), which pulls
 // in Boost.Multiprecision, and ensembles over MPI ranks
 // (parallel/ensemble_mpi.hpp), which need Boost.MPI. docs/layout.md: the folders.
+#include "charged/axisymmetric_splitting.hpp"
+#include "charged/boris.hpp"
+#include "charged/canonical_splitting.hpp"
+#include "charged/fields.hpp"
+#include "charged/particle.hpp"
+#include "charged/relativistic_pusher.hpp"
 #include "core/dual.hpp"
 #include "core/equations_of_motion.hpp"
 #include "core/general_hamiltonian.hpp"

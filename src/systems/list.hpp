@@ -22,6 +22,7 @@ system_entry double_well_entry();
 system_entry toda_entry();
 system_entry damped_oscillator_entry();
 system_entry charged_particle_entry();
+system_entry charged_uniform_entry();
 system_entry double_pendulum_entry();
 system_entry product_hamiltonian_entry();
 
@@ -42,6 +43,7 @@ inline std::vector<system_entry> every_system_entry() {
         toda_entry(),
         damped_oscillator_entry(),
         charged_particle_entry(),
+        charged_uniform_entry(),
         double_pendulum_entry(),
         product_hamiltonian_entry(),
     };
