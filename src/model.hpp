@@ -20,8 +20,10 @@ namespace detail {
 // Trajectory rows at given times (run_request::output_times), read off the
 // Hermite interpolant (drivers/hermite_interpolant.hpp) of the step that holds each
 // time, between the states the observed run sees anyway: the run steps
-// exactly as without them. Only a separable Hamiltonian has the velocity and
-// force the interpolant needs (the program refuses other systems first).
+// exactly as without them. A kind whose stepper interpolates its own steps
+// sets interpolation() (run_context.hpp), read instead. Only a separable
+// Hamiltonian has the velocity and force the Hermite interpolant needs (the
+// program refuses other systems first).
 template <class Sys, class State>
 class timed_rows {
 public:
@@ -33,6 +35,7 @@ public:
     void start(const State&, double, bool) {}
     void after_step(const State&, double) {}
     void finish(const State&, double) {}
+    own_interpolation<State>* interpolation() { return nullptr; }
 };
 
 template <class Sys, class State>
@@ -47,6 +50,7 @@ public:
     // whose rows up to t were written before it was saved.
     void start(const State& x, double t, bool resumed) {
         started_ = true;
+        t_last_ = t;
         interpolant_.start(x, t);
         while (next_ < times_.size() && times_[next_] <= t) {
             if (!resumed) write(times_[next_], x);
@@ -57,9 +61,13 @@ public:
         if (!started_) return start(x, t, false);
         interpolant_.push(x, t);
         for (; next_ < times_.size() && times_[next_] <= t; ++next_) {
-            interpolant_.evaluate(times_[next_], at_);
-            write(times_[next_], at_);
+            const double at = times_[next_];
+            if (!own_) interpolant_.evaluate(at, at_);
+            else if (at == t) at_ = x;
+            else own_((at - t_last_) / (t - t_last_), at_);  // in (0, 1): t_last < at < t
+            write(at, at_);
         }
+        t_last_ = t;
     }
 
     // The run ended at t_end, though its last step's time may be a rounding
@@ -67,6 +75,7 @@ public:
     void finish(const State& x, double t_end) {
         for (; next_ < times_.size() && times_[next_] <= t_end; ++next_) write(times_[next_], x);
     }
+    own_interpolation<State>* interpolation() { return &own_; }
 
 private:
     void write(double t, const State& x) {
@@ -79,7 +88,9 @@ private:
     const std::vector<double>& times_;
     std::ostream* out_;
     step_interpolant<Sys, State> interpolant_;
+    own_interpolation<State> own_;
     State at_;
+    double t_last_ = 0;
     std::size_t next_ = 0;
     bool started_ = false;
 };
@@ -165,7 +176,8 @@ private:
         State x = to_state<Dim>(x0);
         try {
             const auto [steps, forces] =
-                run_method(run_context<Sys, Dim, decltype(observe)>{sys_, m, with_checkpoints, t0, t_end, x, observe});
+                run_method(run_context<Sys, Dim, decltype(observe)>{sys_, m, with_checkpoints, t0, t_end, x, observe,
+                                                                    timed ? rows.interpolation() : nullptr});
             r.steps = steps;
             r.force_evaluations = forces;
             r.final_state = to_vector(x);

@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <stdexcept>
 #include <type_traits>
 #include <utility>
@@ -102,9 +103,18 @@ stepper_memory<V> from_record(const stepper_memory<std::vector<double>>& m) {
 template <class Context, class Stepper>
 steps_and_forces checkpointed(const Context& c, Stepper& stepper);
 
+// The state at t + theta dt inside the last step, from a stepper that
+// interpolates its own steps: the output times (model.hpp) read it instead
+// of the Hermite interpolant, which is far off on a controlled pair's long
+// steps (run_rkn.hpp sets it).
+template <class State>
+using own_interpolation = std::function<void(double theta, State& out)>;
+
 // What a kind's run gets: the system, the method, the request, the span, the
 // state (x0 in, the final state out) and the observer, called at t0 and after
-// every step when the run is observed (Observer is not no_observer).
+// every step when the run is observed (Observer is not no_observer), and,
+// when the observer reads states between steps, where a kind whose stepper
+// interpolates its own steps puts that interpolation.
 template <class Sys, int Dim, class Observer>
 struct run_context {
     using system = Sys;
@@ -118,6 +128,7 @@ struct run_context {
     double t0, t_end;
     State& x;
     Observer& observe;
+    own_interpolation<State>* interpolation = nullptr;
 
     // Any sympl stepper over the span; checkpointed when the request asks.
     // Methods a checkpoint cannot resume were refused before (run_method reads

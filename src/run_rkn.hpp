@@ -32,9 +32,12 @@ struct run_kind<method_kind::dprkn> {
         control_options control;
         control.absolute_tolerance = control.relative_tolerance = c.rq.tolerance;
         control_summary s;
-        if constexpr (C::observed)
+        if constexpr (C::observed) {
+            // Inside a step, the pair's own interpolation: the Hermite's is 1e5x the tolerance off here.
+            if (c.interpolation)
+                *c.interpolation = [&stepper](double theta, typename C::State& out) { stepper.interpolate(theta, out); };
             s = integrate_controlled(stepper, c.x, c.t0, c.t_end, control, c.observe);
-        else
+        } else
             s = integrate_controlled(stepper, c.x, c.t0, c.t_end, control);
         return {s.accepted, s.force_evaluations};
     }

@@ -59,6 +59,13 @@ public:
     [[gnu::always_inline]] inline void steps(State& x, scalar dt, std::size_t n) {
         check_step(dt);
         const int kept = kept_force_matches(x);
+        if constexpr (State::dimension != Eigen::Dynamic) {
+            if (n == 1 && kept == 2 && dt == loop_.p_before_dt) {  // a loop of step() on a small state
+                loop_.joined_step(x, dt);
+                keep_force(x);
+                return;
+            }
+        }
         if (kept == 0) check_state_once_sized(x);
         loop_.run(x, dt, n, kept > 0, false, kept == 2 && dt == loop_.p_before_dt);
         keep_force(x);

@@ -30,6 +30,7 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 #include "../core/error.hpp"
@@ -253,11 +254,15 @@ private:
     };
     static dense_weights make_dense() {
         dense_weights d;
+        // p's weights are those of q's derivative, (k + 2) b_dense[i][k]
+        // (rkn_tables.hpp), formed in long double: in double, the published
+        // values to the last bit.
+        using wide = std::conditional_t<std::is_floating_point_v<scalar>, long double, scalar>;
         if constexpr (rkn_dense_table<P>)
             for (int i = 0; i < stages; ++i)
                 for (int k = 0; k < 5; ++k) {
                     d.b[i][k] = detail::coefficient_as<scalar>(P::b_dense[i][k]);
-                    d.bp[i][k] = detail::coefficient_as<scalar>(P::bp_dense[i][k]);
+                    d.bp[i][k] = scalar(wide(k + 2) * detail::coefficient_as<wide>(P::b_dense[i][k]));
                 }
         return d;
     }

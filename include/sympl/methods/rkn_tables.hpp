@@ -27,8 +27,9 @@ namespace sympl {
 //   b_hat1 = (2701 + 23R)/4563, bp3 = (389225579 + 96856R)/1024056540.
 // The irrational entries below are those closed forms evaluated to 40 digits;
 // the dense-output weights b_i(theta) = sum_k b_dense[i][k] theta^k give
-// q(t + theta h) = q + theta h v + (theta h)^2 sum_i b_i(theta) u_i and
-// p(t + theta h) = p + theta h sum_i bp_i(theta) k_i.
+// q(t + theta h) = q + theta h v + (theta h)^2 sum_i b_i(theta) u_i and, its
+// derivative, p(t + theta h) = p + theta h sum_i bp_i(theta) k_i with
+// bp_i(theta) = sum_k (k + 2) b_dense[i][k] theta^k.
 struct dprkn6 {
     static constexpr const char* name = "dprkn6";
     static constexpr int stages = 6, order = 6, embedded_order = 4;
@@ -72,16 +73,6 @@ struct dprkn6 {
          "-5.164133553908093735055290749122386803789", "1.594908167722996464646906202861492003515"},
         {"0", "1000/459", "-124000/17901", "43400/5967", "-5000/1989"},
         {"0", "-117/110", "757/220", "-823/220", "15/11"},
-    }};
-    static constexpr std::array<std::array<const char*, 5>, 6> bp_dense = {{
-        {"1", "-437/117", "6386/1053", "-6365/1404", "50/39"},
-        {"0", "0", "0", "0", "0"},
-        {"0", "5.957811596611509595535653222825971936302", "-14.31061148917968377541102450375848060155",
-         "12.69200558205475177779485038165562888617", "-3.950362210780594995203526892199803522527"},
-        {"0", "-5.567807483077984297304472638704211343953", "22.19034700420931645210252472467046621942",
-         "-25.82066776954046867527645374561193401894", "9.569449006337978787881437217168952021087"},
-        {"0", "1000/153", "-496000/17901", "217000/5967", "-10000/663"},
-        {"0", "-351/110", "757/55", "-823/44", "90/11"},
     }};
 };
 
@@ -262,12 +253,9 @@ concept rkn_pair_table = requires {
     requires P::bp.size() == std::size_t(P::stages) && P::bp_hat.size() == std::size_t(P::stages);
 };
 
-// A pair with a continuous extension (dense output): b_dense, bp_dense.
+// A pair with a continuous extension (dense output): b_dense.
 template <class P>
-concept rkn_dense_table = rkn_pair_table<P> && requires {
-    requires P::b_dense.size() == std::size_t(P::stages);
-    requires P::bp_dense.size() == std::size_t(P::stages);
-};
+concept rkn_dense_table = rkn_pair_table<P> && requires { requires P::b_dense.size() == std::size_t(P::stages); };
 
 namespace detail {
 // A decimal number as text in scalar S: by S's own parser when it has one
