@@ -71,6 +71,10 @@ std::string as_text(const scene& s, const outcome& o) {
       << (o.final_error >= 0 ? format_number(o.final_error, 3) : "-") << "   "
       << (r.seconds >= 0 ? format_number(r.seconds * 1e3, 3) + " ms" : std::string("(not timed)"));
     if (o.loop_area_error >= 0) l << "   loop area error " << format_number(o.loop_area_error, 3);
+    // An error of order one is no solution: flagged, not left to read as a result.
+    if (o.final_error >= 0.1 || r.max_energy_error >= 0.1)
+        l << "\n    ERROR OF ORDER ONE: this run is no solution of the scene (its step is too large or its "
+             "tolerance too loose for this span)";
     if (s.output.final_state) {
         l << "\n    final state:";
         for (double v : r.final_state) l << " " << format_number(v, 17);
@@ -215,18 +219,25 @@ outcome run_one(const scene& s, const problem& p, const planned_run& planned, co
 // The summary's first lines: what ran, against which reference; a sweep says
 // which of its values `sympl run` takes.
 void write_heading(const scene& s, const run_plan& plan, const reference_state& ref, std::ostream& out) {
-    out << s.name << ": " << s.system << ", t = " << format_number(s.t0, 17) << " .. " << format_number(s.t_end, 17)
-        << ", dt = " << format_number(s.dt.front(), 17) << " (dopri5 tolerance " << format_number(s.tolerances.front())
-        << "), reference: " << ref.kind;
+    bool fixed = false, controlled = false;
+    for (const scene_method& m : s.methods) (adaptive(m) ? controlled : fixed) = true;
+    out << s.name << ": " << s.system << ", t = " << shortest(s.t0) << " .. " << shortest(s.t_end);
+    if (fixed) out << ", dt = " << shortest(s.dt.front());
+    if (controlled) out << ", tolerance " << shortest(s.tolerances.front());
+    out << ", reference: " << ref.kind;
     if (ref.error > 0) out << " (its own error ~" << format_number(ref.error, 2) << ")";
     out << "\n";
+    std::vector<std::string> swept;
     for (const scene_method& m : s.methods)
-        if (sweep_of(s, m).size() > plan.sweep_length(m)) {
-            out << "  (a sweep: each method runs its first, largest, value; `sympl report` runs them all)\n";
-            break;
-        }
+        if (sweep_of(s, m).size() > plan.sweep_length(m)) swept.push_back(m.name);
+    if (!swept.empty()) {
+        out << "  (a sweep: ";
+        for (std::size_t i = 0; i < swept.size(); ++i) out << (i ? ", " : "") << swept[i];
+        out << (swept.size() == 1 ? " runs its" : " run their") << " first, largest, " << (fixed ? "dt" : "tolerance")
+            << (fixed && controlled ? " or tolerance" : "") << " here; `sympl report` runs them all)\n";
+    }
     if (s.output.times_dropped)
-        out << "  (" << s.output.times_dropped << " of the output times are past t_end = " << format_number(s.t_end, 17)
+        out << "  (" << s.output.times_dropped << " of the output times are past t_end = " << shortest(s.t_end)
             << " and have no rows)\n";
     if (!ref.failure.empty()) out << "  no final errors: " << ref.failure << "\n";
 }
