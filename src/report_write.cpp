@@ -242,23 +242,22 @@ void fastest_per_level(const std::vector<report_row>& rows, const std::vector<ru
         md << "**" << markdown_cell(why) << "**\n\n";
         table << why << "\n";
     }
-    // Runs whose error reached order one: no solution, whatever their time.
+    // Runs whose error reached order one: no solution, whatever their time. One line per scene and method.
     std::ostringstream flagged;
     std::size_t count = 0;
+    const report_row* previous = nullptr;
     for (const report_row& r : rows) {
-        if (!r.r.stable) continue;
-        const bool final_bad = r.final_error >= order_one, energy_bad = r.r.max_energy_error >= order_one;
-        if (!final_bad && !energy_bad) continue;
-        flagged << (count++ ? "; " : "") << r.s->name << " " << r.method().name << " at "
-                << (r.run->dt > 0 ? "dt = " + shortest(r.run->dt) : "tolerance " + shortest(r.run->tolerance)) << " ("
-                << (final_bad ? "final error " + format_number(r.final_error, 2) : "")
-                << (final_bad && energy_bad ? ", " : "")
-                << (energy_bad ? "energy error " + format_number(r.r.max_energy_error, 2) : "") << ")";
+        if (!r.r.stable || (r.final_error < order_one && r.r.max_energy_error < order_one)) continue;
+        const bool same = previous && previous->s == r.s && &previous->method() == &r.method();
+        if (!same) flagged << "\n- " << markdown_cell(r.s->name) << ", " << markdown_cell(r.method().name) << " at "
+                           << (r.run->dt > 0 ? "dt" : "tolerance");
+        flagged << (same ? ", " : " ") << shortest(r.run->setting());
+        previous = &r;
+        ++count;
     }
     if (count) {
-        md << "**" << count << " runs reached an error of order one (>= " << format_number(order_one)
-           << "): no solution at any level, left out of the tables and figures:** " << markdown_cell(flagged.str())
-           << ".\n\n";
+        md << "**" << count << " runs reached an error of order one (final or energy error >= " << format_number(order_one)
+           << "): no solution at any level, left out of the tables and figures:**\n" << flagged.str() << "\n\n";
         table << count << " runs reached an error of order one (>= " << format_number(order_one)
               << ") and are left out of the tables (summary.md names them)\n";
     }

@@ -172,7 +172,7 @@ t_end = 12.566370614359172
     CHECK(summary.find("## Fastest method per max energy error") != std::string::npos);
     CHECK(summary.find("| pick |") != std::string::npos);
     CHECK(summary.find("reached an error of order one") != std::string::npos);
-    CHECK(summary.find("kep leapfrog_kdk at dt = 5") != std::string::npos);
+    CHECK(summary.find("- kep, leapfrog_kdk at dt 5") != std::string::npos);
     CHECK(out.str().find("max energy error:") != std::string::npos);
     const auto rows = read_csv(dir / "time_to_accuracy.csv");
     REQUIRE(rows.size() > 1);
