@@ -78,11 +78,13 @@ void energy_series_study(const std::vector<scene>& scenes, const std::vector<rep
     csv.stream() << "scene,method,setting,t,energy_error\n";
     csv.stream().precision(8);
     for (const scene& s : scenes) {
-        // The tightest level a symplectic method reaches; the symplectic run reaching it fastest; the
-        // non-symplectic method fastest at that level, at its run of the nearest time (equal cost).
+        if (s.ensemble) continue;  // the chaos map: one dt, its own section
+        // Level 1e-8, or the tightest above it a symplectic method reaches (below it rounding, not the
+        // method, sets the drift); the symplectic run reaching it fastest; the non-symplectic method
+        // fastest at that level, at its run of the nearest time (equal cost).
         std::optional<std::pair<const scene_method*, double>> ours;
         double level = 0;
-        for (double l : {1e-4, 1e-6, 1e-8, 1e-10, 1e-12})
+        for (double l : {1e-4, 1e-6, 1e-8})
             if (const auto f = fastest_at(rows, s, l, true)) ours = f, level = l;
         if (!ours) continue;
         const report_row* a = nearest_run(rows, *ours->first, ours->second);
@@ -90,8 +92,8 @@ void energy_series_study(const std::vector<scene>& scenes, const std::vector<rep
         for (double l = level; l <= 1e-4 * 1.0001 && !theirs; l *= 100) theirs = fastest_at(rows, s, l, false);
         const report_row* b = theirs ? nearest_run(rows, *theirs->first, a->r.seconds) : nullptr;
         if (panels.empty())
-            md << "## Energy error against time\n\nPer scene, the symplectic run that reaches the tightest level of "
-                  "max energy error fastest, against the non-symplectic method fastest at that level (or the nearest "
+            md << "## Energy error against time\n\nPer scene, the symplectic run that reaches a max energy error of "
+                  "1e-8 fastest (or the tightest level above it one reaches), against the non-symplectic method fastest at that level (or the nearest "
                   "level it reaches), at its run of about the same time: equal cost (energy_vs_time.csv"
                << (plots ? ", energy_vs_time.png" : "") << "; log time axis).\n\n";
         panel p{&s, {}};
