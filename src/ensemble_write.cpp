@@ -139,9 +139,12 @@ void write_section(const ensemble_setup& u, const fs::path& dir, const std::stri
         atomic_file gp(dir / (prefix + "poincare.gp"));
         gp.stream() << "set terminal pngcairo size 800,700\nset output " << gnuplot_string(prefix + "poincare.png")
                     << "\nset datafile separator ','\nset title " << gnuplot_string(s.name + ": section q1 = 0")
-                    << " noenhanced\nset xlabel 'q2'\nset ylabel 'p2'\nplot "
-                    << gnuplot_string(prefix + "poincare.csv") << " every ::1 using 3:" << (d + 3)
-                    << ":1 with dots lc variable notitle\n";
+                    << " noenhanced\nset xlabel 'q2'\nset ylabel 'p2'\n";
+        // Filled points of eight dark, distinct colours (no pale yellow on white), one per orbit in turn.
+        const char* const colours[] = {"#0072b2", "#d55e00", "#009e73", "#cc79a7", "#000000", "#56b4e9", "#8b4513", "#6a3d9a"};
+        for (int k = 0; k < 8; ++k) gp.stream() << "set linetype " << 101 + k << " lc rgb " << gnuplot_string(colours[k]) << "\n";
+        gp.stream() << "plot " << gnuplot_string(prefix + "poincare.csv") << " every ::1 using 3:" << (d + 3)
+                    << ":(101 + int($1) % 8) with points pt 7 ps 0.3 lc variable notitle\n";
         gp.commit();
         run_gnuplot(dir / (prefix + "poincare.gp"), dir / (prefix + "poincare.png"));
         if (fs::exists(dir / (prefix + "poincare.png"))) outcome.files.push_back(prefix + "poincare.png");

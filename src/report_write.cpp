@@ -7,6 +7,7 @@
 #include <memory>
 #include <optional>
 #include <set>
+#include <sstream>
 #include <string>
 
 #include "format.hpp"
@@ -21,12 +22,14 @@ namespace {
 
 std::string csv_number(double v) { return v < 0 ? "" : format_number(v, 6); }
 
-// One method's measured runs on one scene, as a work-precision curve.
-std::vector<work_point> curve_of(const std::vector<report_row>& rows, const scene_method& m) {
+// One method's measured runs on one scene, as a work-precision curve of the
+// given measure. Runs whose error reached order one are no solution at any
+// level: they are listed apart (order_one_runs), not drawn or interpolated.
+std::vector<work_point> curve_of(const std::vector<report_row>& rows, const scene_method& m, error_measure by) {
     std::vector<work_point> curve;
     for (const report_row& r : rows)
-        if (&r.method() == &m && r.r.stable && r.final_error >= 0)
-            curve.push_back({r.r.seconds, r.final_error, r.run->setting()});
+        if (&r.method() == &m && r.r.stable && measured(r, by) >= 0 && measured(r, by) < order_one)
+            curve.push_back({r.r.seconds, measured(r, by), r.run->setting()});
     return curve;
 }
 
@@ -37,11 +40,11 @@ struct verdict {
     double best_error = HUGE_VAL;  // the smallest error any of the group reached
 };
 
-verdict fastest(const std::vector<report_row>& rows, const scene& s, double level, bool odeint) {
+verdict fastest(const std::vector<report_row>& rows, const scene& s, double level, bool odeint, error_measure by) {
     verdict v;
     for (const scene_method& m : s.methods) {
         if (entry_of(m.kind).odeint != odeint) continue;
-        const auto curve = curve_of(rows, m);
+        const auto curve = curve_of(rows, m, by);
         for (const work_point& p : curve) v.best_error = std::min(v.best_error, p.error);
         const auto reach = time_to_reach(curve, level);
         if (reach && (!v.reach || reach->seconds < v.reach->seconds)) v.method = &m, v.reach = reach;
@@ -49,44 +52,11 @@ verdict fastest(const std::vector<report_row>& rows, const scene& s, double leve
     return v;
 }
 
-// A colour per method of the figure: hues spread evenly, lightness alternating
-// so that neighbours in hue still differ.
-std::string colour(std::size_t i, std::size_t n) {
-    const double h = 6.0 * double(i) / double(std::max<std::size_t>(n, 1)), v = i % 2 ? 0.65 : 0.9, s = 0.85;
-    const double c = v * s, x = c * (1 - std::fabs(std::fmod(h, 2.0) - 1)), m = v - c;
-    double rgb[3] = {0, 0, 0};
-    const int sector = int(h) % 6;
-    const int order[6][3] = {{0, 1, 2}, {1, 0, 2}, {2, 0, 1}, {2, 1, 0}, {1, 2, 0}, {0, 2, 1}};  // c, x, 0 slots
-    rgb[order[sector][0]] = c;
-    rgb[order[sector][1]] = x;
-    char text[8];
-    std::snprintf(text, sizeof text, "#%02x%02x%02x", int(255 * (rgb[0] + m)), int(255 * (rgb[1] + m)),
-                  int(255 * (rgb[2] + m)));
-    return text;
-}
-
-struct method_style {
-    std::string colour;
-    int marker;
-    bool odeint;
-};
-
-// Every method name of the figure, in first-seen order, with its style.
-std::map<std::string, method_style> styles_of(const std::vector<const run_plan*>& panels) {
-    std::vector<const scene_method*> order;
-    std::set<std::string> seen;
-    for (const run_plan* plan : panels)
-        for (const scene_method& m : plan->s->methods)
-            if (seen.insert(m.name).second) order.push_back(&m);
-    std::map<std::string, method_style> styles;
-    for (std::size_t i = 0; i < order.size(); ++i)
-        styles[order[i]->name] = {colour(i, order.size()), 1 + int(i % 13), entry_of(order[i]->kind).odeint};
-    return styles;
-}
-
-std::string style_text(const method_style& st) {
-    return "with linespoints lw 1.5 dt " + std::string(st.odeint ? "2" : "1") + " pt " + std::to_string(st.marker) +
-           " ps 0.8 lc rgb " + gnuplot_string(st.colour);
+// Whether a scene has the measure at all: final errors need a reference, energy errors an energy.
+bool scene_has(const std::vector<report_row>& rows, const scene& s, error_measure by) {
+    for (const report_row& r : rows)
+        if (r.s == &s && r.r.stable && measured(r, by) >= 0) return true;
+    return false;
 }
 
 }  // namespace
@@ -118,81 +88,120 @@ void write_work_precision_csv(const std::vector<report_row>& rows,
     csv.commit();
 }
 
-void plot_work_precision(const std::vector<report_row>& rows, const std::vector<run_plan>& plans, const fs::path& dir) {
+namespace {
+
+const char* measure_name(error_measure by) { return by == error_measure::final_error ? "final error" : "max energy error"; }
+
+constexpr double levels[] = {1e-4, 1e-6, 1e-8, 1e-10, 1e-12};
+
+// The tightest level both sympl and Odeint reach on a scene, for the figure's
+// title: "fastest at 1e-10: ..."; nullopt when they share none.
+std::optional<double> shared_level(const std::vector<report_row>& rows, const scene& s, error_measure by) {
+    std::optional<double> found;
+    for (double level : levels)
+        if (fastest(rows, s, level, false, by).method && fastest(rows, s, level, true, by).method) found = level;
+    return found;
+}
+
+// A palette of ten colours told apart by most eyes (Okabe & Ito's eight and
+// two darker ones); with 5 dash types and markers a panel of 20 methods still
+// draws each curve its own way.
+const char* const palette[] = {"#0072b2", "#d55e00", "#009e73", "#cc79a7", "#e69f00",
+                               "#56b4e9", "#000000", "#8b4513", "#7f7f7f", "#6a3d9a"};
+
+}  // namespace
+
+void plot_work_precision(const std::vector<report_row>& rows, const std::vector<run_plan>& plans, const fs::path& dir,
+                         error_measure by) {
     std::vector<const run_plan*> panels;
     for (const run_plan& p : plans)
-        if (has_sweep(p)) panels.push_back(&p);
+        if (has_sweep(p) && scene_has(rows, *p.s, by)) panels.push_back(&p);
     if (panels.empty()) return;
-    const auto styles = styles_of(panels);
-    const std::size_t slots = panels.size() + 1;  // the last slot holds the one legend
-    const int cols = slots > 1 ? 2 : 1, rows_n = int((slots + 1) / 2);
-    atomic_file gp(dir / "work_precision.gp");
-    gp.stream() << "set terminal pngcairo size " << 700 * cols << "," << 430 * rows_n << "\nset output "
-                << gnuplot_string("work_precision.png") << "\nset logscale xy\nset format x '10^{%L}'\nset format y '10^{%L}'\n"
-                << "set xlabel 'wall time [s]'\nset ylabel 'final error (relative)'\nunset key\n"
+    const std::string stem = by == error_measure::final_error ? "work_precision" : "energy_precision";
+    const int cols = panels.size() > 1 ? 2 : 1, rows_n = int((panels.size() + 1) / 2);
+    atomic_file gp(dir / (stem + ".gp"));
+    gp.stream() << "set terminal pngcairo size " << 1000 * cols << "," << 520 * rows_n << " font ',10'\nset output "
+                << gnuplot_string(stem + ".png") << "\nset logscale xy\nset format x '10^{%L}'\nset format y '10^{%L}'\n"
+                << "set xlabel 'wall time [s]'\nset ylabel " << gnuplot_string(std::string(measure_name(by)) + " (relative)")
+                << "\nset grid\nset key outside right top font ',8' noenhanced spacing 0.9\n"
                 << "set multiplot layout " << rows_n << "," << cols << "\n";
     std::vector<std::unique_ptr<atomic_file>> data_files;
     for (std::size_t k = 0; k < panels.size(); ++k) {
         const scene& s = *panels[k]->s;
-        const std::string data = "wp_" + std::to_string(k + 1) + "_" + file_name_part(s.name) + ".dat";
+        const std::string data = stem + "_" + std::to_string(k + 1) + "_" + file_name_part(s.name) + ".dat";
         auto d = std::make_unique<atomic_file>(dir / data);
         for (const scene_method& m : s.methods) {
             int points = 0;
-            for (const report_row& r : rows)
-                if (&r.method() == &m && r.r.stable && r.final_error > 0 && r.r.seconds > 0) {
-                    d->stream() << r.r.seconds << " " << r.final_error << "\n";
+            for (const work_point& p : curve_of(rows, m, by))
+                if (p.error > 0 && p.seconds > 0) {
+                    d->stream() << p.seconds << " " << p.error << "\n";
                     ++points;
                 }
             if (points == 0) d->stream() << "NaN NaN\n";
             d->stream() << "\n\n";
         }
-        gp.stream() << "set title " << gnuplot_string(s.name) << " noenhanced\nplot ";
-        for (std::size_t i = 0; i < s.methods.size(); ++i)
-            gp.stream() << (i ? ", " : "") << gnuplot_string(data) << " index " << i << " "
-                        << style_text(styles.at(s.methods[i].name)) << " notitle";
+        std::string title = s.name;
+        if (const auto level = shared_level(rows, s, by))
+            title += "\\nfastest at " + format_number(*level) + ": " +
+                     fastest(rows, s, *level, false, by).method->name + " (sympl), " +
+                     fastest(rows, s, *level, true, by).method->name + " (Odeint)";
+        gp.stream() << "set title \"" << title << "\" noenhanced\nplot ";
+        for (std::size_t i = 0; i < s.methods.size(); ++i) {
+            const bool odeint = entry_of(s.methods[i].kind).odeint;
+            gp.stream() << (i ? ", " : "") << gnuplot_string(data) << " index " << i << " with linespoints lw 1.6 dt "
+                        << (odeint ? 2 : 1 + int(i / 10) % 4 * 2) << " pt " << 1 + int(i % 13) << " ps 0.9 lc rgb "
+                        << gnuplot_string(palette[i % 10]) << " title " << gnuplot_string(s.methods[i].name);
+        }
         gp.stream() << "\n";
         data_files.push_back(std::move(d));
     }
-    // The legend: every method once, solid for sympl's, dashed for Odeint's.
-    gp.stream() << "unset title\nunset border\nunset tics\nunset xlabel\nunset ylabel\nunset logscale\nset xrange [0:1]\n"
-                << "set yrange [0:1]\nset key inside center center maxrows " << (styles.size() + 1) / 2
-                << " font ',8' noenhanced\nplot ";
-    std::size_t i = 0;
-    for (const auto& [name, st] : styles)
-        gp.stream() << (i++ ? ", " : "") << "NaN " << style_text(st) << " title " << gnuplot_string(name);
-    gp.stream() << "\nunset multiplot\n";
+    gp.stream() << "unset multiplot\n";
     for (auto& d : data_files) d->commit();
     gp.commit();
-    run_gnuplot(dir / "work_precision.gp", dir / "work_precision.png");
+    run_gnuplot(dir / (stem + ".gp"), dir / (stem + ".png"));
 }
 
-void fastest_per_level(const std::vector<report_row>& rows, const std::vector<run_plan>& plans, std::ostream& md,
-                       std::ostream& table, const fs::path& dir) {
-    md << "## Fastest method per accuracy level\n\n"
-       << "Time to a final error of 1e-4, 1e-6, 1e-8, 1e-10 and 1e-12, read off each method's work-precision curve by log-log "
-          "interpolation between the two runs that bracket the level (time_to_accuracy.csv lists them). Odeint: the "
-          "fastest of the Odeint steppers of the scene over all their tolerances. Scenes without a sweep (the chaos "
-          "map) are left out.\n\n"
-       << "| scene | level | fastest sympl method | time [s] | fastest Odeint method | time [s] | Odeint / sympl |\n"
-       << "|---|---|---|---|---|---|---|\n";
-    table << std::left << std::setw(22) << "scene" << std::setw(8) << "level" << std::setw(38) << "fastest sympl"
+namespace {
+
+// One measure's table: per scene with a sweep and the measure, per level, the
+// fastest sympl and Odeint method and which of them to pick.
+void fastest_table(const std::vector<report_row>& rows, const std::vector<run_plan>& plans, error_measure by,
+                   std::ostream& md, std::ostream& table, std::ostream& csv) {
+    const std::string name_of_measure = measure_name(by);
+    md << "## Fastest method per " << name_of_measure << "\n\n"
+       << (by == error_measure::final_error
+               ? "Time to a final error (max |x - x_ref| / max |x_ref| at t_end) of "
+               : "Time to a largest relative energy error |H - H_0| / |H_0| over the whole run of ")
+       << "1e-4, 1e-6, 1e-8, 1e-10 and 1e-12, read off each method's curve by log-log interpolation between the two "
+          "runs that bracket the level (time_to_accuracy.csv lists them). Odeint: the fastest of the Odeint steppers "
+          "of the scene over all their tolerances. Pick: the faster of the two.\n\n";
+    std::vector<std::string> without;
+    for (const run_plan& plan : plans)
+        if (has_sweep(plan) && !scene_has(rows, *plan.s, by)) without.push_back(plan.s->name);
+    if (!without.empty()) {
+        md << "Not in this table: ";
+        for (std::size_t i = 0; i < without.size(); ++i) md << (i ? ", " : "") << markdown_cell(without[i]);
+        md << (by == error_measure::final_error ? " (no final errors: see above).\n\n"
+                                          : " (no energy: the system is not Hamiltonian).\n\n");
+    }
+    md << "| scene | level | fastest sympl method | time [s] | fastest Odeint method | time [s] | Odeint / sympl | pick |\n"
+       << "|---|---|---|---|---|---|---|---|\n";
+    table << "\n" << name_of_measure << ":\n"
+          << std::left << std::setw(22) << "scene" << std::setw(8) << "level" << std::setw(38) << "fastest sympl"
           << std::right << std::setw(10) << "time [s]" << "  " << std::left << std::setw(24) << "fastest Odeint" << std::right
           << std::setw(10) << "time [s]" << std::setw(10) << "ratio" << "\n";
-    atomic_file csv(dir / "time_to_accuracy.csv");
-    csv.stream() << csv_line({"scene", "level", "method", "seconds", "bracketed", "above_dt_or_tolerance", "above_error",
-                              "above_seconds", "below_dt_or_tolerance", "below_error", "below_seconds"});
     for (const run_plan& plan : plans) {
-        if (!has_sweep(plan)) continue;
         const scene& s = *plan.s;
-        for (double level : {1e-4, 1e-6, 1e-8, 1e-10, 1e-12}) {
+        if (!has_sweep(plan) || !scene_has(rows, s, by)) continue;
+        for (double level : levels) {
             for (const scene_method& m : s.methods)
-                if (const auto r = time_to_reach(curve_of(rows, m), level))
-                    csv.stream() << csv_line({s.name, format_number(level), m.name, format_number(r->seconds, 6),
-                                              r->bracketed ? "yes" : "no", format_number(r->above.parameter, 6),
-                                              format_number(r->above.error, 6), format_number(r->above.seconds, 6),
-                                              format_number(r->below.parameter, 6), format_number(r->below.error, 6),
-                                              format_number(r->below.seconds, 6)});
-            const verdict ours = fastest(rows, s, level, false), theirs = fastest(rows, s, level, true);
+                if (const auto r = time_to_reach(curve_of(rows, m, by), level))
+                    csv << csv_line({s.name, name_of_measure, format_number(level), m.name, format_number(r->seconds, 6),
+                                     r->bracketed ? "yes" : "no", format_number(r->above.parameter, 6),
+                                     format_number(r->above.error, 6), format_number(r->above.seconds, 6),
+                                     format_number(r->below.parameter, 6), format_number(r->below.error, 6),
+                                     format_number(r->below.seconds, 6)});
+            const verdict ours = fastest(rows, s, level, false, by), theirs = fastest(rows, s, level, true, by);
             const auto name = [](const verdict& v) {
                 if (v.method) return v.method->name;
                 return std::isfinite(v.best_error) ? "not reached (best " + format_number(v.best_error, 2) + ")"
@@ -201,16 +210,64 @@ void fastest_per_level(const std::vector<report_row>& rows, const std::vector<ru
             const auto time = [](const verdict& v) { return v.reach ? format_number(v.reach->seconds, 3) : "-"; };
             const std::string ratio =
                 ours.reach && theirs.reach ? format_number(theirs.reach->seconds / ours.reach->seconds, 3) + "x" : "-";
+            const verdict* pick = ours.reach && (!theirs.reach || ours.reach->seconds <= theirs.reach->seconds) ? &ours
+                                  : theirs.reach ? &theirs
+                                                 : nullptr;
             md << "| " << markdown_cell(s.name) << " | " << format_number(level) << " | " << markdown_cell(name(ours))
                << " | " << time(ours) << " | " << markdown_cell(name(theirs)) << " | " << time(theirs) << " | " << ratio
-               << " |\n";
+               << " | " << (pick ? markdown_cell(pick->method->name) : "-") << " |\n";
             table << std::left << std::setw(22) << s.name << std::setw(8) << format_number(level) << std::setw(38)
                   << name(ours) << std::right << std::setw(10) << time(ours) << "  " << std::left << std::setw(24)
                   << name(theirs) << std::right << std::setw(10) << time(theirs) << std::setw(10) << ratio << "\n";
         }
     }
-    csv.commit();
     md << "\n";
+}
+
+}  // namespace
+
+void fastest_per_level(const std::vector<report_row>& rows, const std::vector<run_plan>& plans, std::ostream& md,
+                       std::ostream& table, const fs::path& dir) {
+    // A scene with one dt (and one tolerance) has no curve to read: say so rather than print an empty table.
+    bool any = false;
+    for (const run_plan& plan : plans) {
+        if (has_sweep(plan)) {
+            any = true;
+            continue;
+        }
+        if (plan.s->ensemble) continue;  // the chaos map: its own section below
+        const std::string why = plan.s->name + ": a single dt" + (plan.s->tolerances.size() == 1 ? " and tolerance" : "") +
+                                ", so no work-precision curve and no fastest method; give dt = {from, to, count} "
+                                "(or tolerances) for a sweep.";
+        md << "**" << markdown_cell(why) << "**\n\n";
+        table << why << "\n";
+    }
+    // Runs whose error reached order one: no solution, whatever their time. One line per scene and method.
+    std::ostringstream flagged;
+    std::size_t count = 0;
+    const report_row* previous = nullptr;
+    for (const report_row& r : rows) {
+        if (!r.r.stable || (r.final_error < order_one && r.r.max_energy_error < order_one)) continue;
+        const bool same = previous && previous->s == r.s && &previous->method() == &r.method();
+        if (!same) flagged << "\n- " << markdown_cell(r.s->name) << ", " << markdown_cell(r.method().name) << " at "
+                           << (r.run->dt > 0 ? "dt" : "tolerance");
+        flagged << (same ? ", " : " ") << shortest(r.run->setting());
+        previous = &r;
+        ++count;
+    }
+    if (count) {
+        md << "**" << count << " runs reached an error of order one (final or energy error >= " << format_number(order_one)
+           << "): no solution at any level, left out of the tables and figures:**\n" << flagged.str() << "\n\n";
+        table << count << " runs reached an error of order one (>= " << format_number(order_one)
+              << ") and are left out of the tables (summary.md names them)\n";
+    }
+    if (!any) return;
+    atomic_file csv(dir / "time_to_accuracy.csv");
+    csv.stream() << csv_line({"scene", "measure", "level", "method", "seconds", "bracketed", "above_dt_or_tolerance",
+                              "above_error", "above_seconds", "below_dt_or_tolerance", "below_error", "below_seconds"});
+    fastest_table(rows, plans, error_measure::final_error, md, table, csv.stream());
+    fastest_table(rows, plans, error_measure::energy_error, md, table, csv.stream());
+    csv.commit();
 }
 
 }  // namespace sympl::app

@@ -240,21 +240,26 @@ outcome run_one(const scene& s, const problem& p, const planned_run& planned, co
 // Times and steps as the scene wrote them (shortest: 0.05, not 0.050000000000000003);
 // a tolerance only where an adaptive method uses one.
 void write_heading(const scene& s, const run_plan& plan, const reference_state& ref, std::ostream& out) {
+    bool fixed = false, controlled = false;
+    for (const scene_method& m : s.methods) (adaptive(m) ? controlled : fixed) = true;
     out << s.name << ": " << s.system << ", t = " << shortest(s.t0) << " .. " << shortest(s.t_end);
     if (s.period > 0) out << " (" << format_number((s.t_end - s.t0) / s.period, 6) << " periods)";
-    out << ", dt = " << shortest(s.dt.front());
-    if (std::any_of(s.methods.begin(), s.methods.end(), [](const scene_method& m) { return adaptive(m); }))
-        out << " (tolerance " << shortest(s.tolerances.front()) << ")";
+    if (fixed) out << ", dt = " << shortest(s.dt.front());
+    if (controlled) out << ", tolerance " << shortest(s.tolerances.front());
     out << ", reference: " << ref.kind;
     if (ref.error > 0) out << " (its own error ~" << format_number(ref.error, 2) << ")";
     out << "\n";
+    std::vector<std::string> swept;
     for (const scene_method& m : s.methods)
-        if (sweep_of(s, m).size() > plan.sweep_length(m)) {
-            out << "  (a sweep: each method runs its first, largest, value; `sympl report` runs them all)\n";
-            break;
-        }
+        if (sweep_of(s, m).size() > plan.sweep_length(m)) swept.push_back(m.name);
+    if (!swept.empty()) {
+        out << "  (a sweep: ";
+        for (std::size_t i = 0; i < swept.size(); ++i) out << (i ? ", " : "") << swept[i];
+        out << (swept.size() == 1 ? " runs its" : " run their") << " first, largest, " << (fixed ? "dt" : "tolerance")
+            << (fixed && controlled ? " or tolerance" : "") << " here; `sympl report` runs them all)\n";
+    }
     if (s.output.times_dropped)
-        out << "  (" << s.output.times_dropped << " of the output times are past t_end = " << format_number(s.t_end, 17)
+        out << "  (" << s.output.times_dropped << " of the output times are past t_end = " << shortest(s.t_end)
             << " and have no rows)\n";
     if (!ref.failure.empty()) out << "  no final errors: " << ref.failure << "\n";
 }

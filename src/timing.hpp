@@ -18,6 +18,19 @@ inline double clock_seconds() {
     return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
+// The clock's resolution as seen: the smallest nonzero step between two
+// successive readings (at most the tick, at least the cost of a reading).
+inline double clock_resolution() {
+    double best = 1;
+    for (int k = 0; k < 1000; ++k) {
+        const auto a = std::chrono::steady_clock::now();
+        auto b = std::chrono::steady_clock::now();
+        while (b == a) b = std::chrono::steady_clock::now();
+        best = std::min(best, std::chrono::duration<double>(b - a).count());
+    }
+    return best;
+}
+
 // One measurement: f called until `least` seconds have passed; seconds per call.
 template <class F>
 double seconds_per_call(F&& f, double least) {

@@ -1,55 +1,144 @@
-// The energy error along a run: symplectic tables against Odeint on a Kepler scene.
+// The energy error along the run, every Hamiltonian scene with a sweep: its
+// fastest symplectic method against its fastest non-symplectic one at equal
+// cost, on a log time axis (energy_vs_time.csv and .png).
 #include "study.hpp"
 
 #include <algorithm>
 #include <cmath>
-
-#include <sympl/sympl.hpp>
+#include <optional>
 
 #include "format.hpp"
-#include "systems.hpp"
+#include "report_write.hpp"
+#include "work_precision.hpp"
 #include "writers.hpp"
 
 namespace sympl::app {
 
 namespace fs = std::filesystem;
 
-void energy_series_study(const std::vector<scene>& scenes, const fs::path& dir, bool plots) {
-    // The energy error along the run for a few methods on the first Kepler scene (or the first Hamiltonian one).
-    const scene* chosen = nullptr;
-    for (const scene& s : scenes)
-        if (s.system == "kepler") { chosen = &s; break; }
-    if (!chosen) return;
-    const problem p = make_problem(chosen->system, chosen->parameters, chosen->q0, chosen->p0, chosen->source);
-    const double dt = chosen->dt[chosen->dt.size() / 2];
+namespace {
+
+// Symplectic: tables (plain, processed, compensated), LogH, Gauss-Legendre,
+// the semi-explicit and Tao compositions, Wisdom-Holman; not extrapolation,
+// Runge-Kutta(-Nystrom) or Odeint.
+bool symplectic(const scene_method& m) {
+    if (m.extrapolation_columns > 0) return false;
+    switch (m.kind) {
+        case method_kind::table: case method_kind::processed: case method_kind::logh: case method_kind::gauss:
+        case method_kind::tao: case method_kind::semiexplicit: case method_kind::wisdom_holman: return true;
+        default: return false;
+    }
+}
+
+struct contender {
+    const report_row* row = nullptr;  // the run drawn
+    double level = 0;                 // the energy level its method reaches fastest
+};
+
+std::vector<work_point> energy_curve(const std::vector<report_row>& rows, const scene_method& m) {
+    std::vector<work_point> curve;
+    for (const report_row& r : rows)
+        if (&r.method() == &m && r.r.stable && r.r.max_energy_error >= 0 && r.r.max_energy_error < order_one)
+            curve.push_back({r.r.seconds, r.r.max_energy_error, r.run->setting()});
+    return curve;
+}
+
+// The fastest method of the group at `level` and its run that reaches it.
+std::optional<std::pair<const scene_method*, double>> fastest_at(const std::vector<report_row>& rows, const scene& s,
+                                                                 double level, bool want_symplectic) {
+    std::optional<std::pair<const scene_method*, double>> best;
+    for (const scene_method& m : s.methods) {
+        if (symplectic(m) != want_symplectic) continue;
+        if (const auto r = time_to_reach(energy_curve(rows, m), level); r && (!best || r->seconds < best->second))
+            best = std::pair{&m, r->seconds};
+    }
+    return best;
+}
+
+// The run of method m whose time is nearest `seconds` (log scale).
+const report_row* nearest_run(const std::vector<report_row>& rows, const scene_method& m, double seconds) {
+    const report_row* found = nullptr;
+    for (const report_row& r : rows)
+        if (&r.method() == &m && r.r.stable && r.r.seconds > 0 && r.r.max_energy_error >= 0 &&
+            (!found || std::fabs(std::log(r.r.seconds / seconds)) < std::fabs(std::log(found->r.seconds / seconds))))
+            found = &r;
+    return found;
+}
+
+}  // namespace
+
+void energy_series_study(const std::vector<scene>& scenes, const std::vector<report_row>& rows, const fs::path& dir,
+                         bool plots, std::ostream& md) {
+    struct panel {
+        const scene* s;
+        std::vector<std::string> labels;
+    };
+    std::vector<panel> panels;
     atomic_file csv(dir / "energy_vs_time.csv");
-    csv.stream() << "method,t,energy_error\n";
-    std::vector<std::string> names;
-    for (const std::string name : {"leapfrog_kdk", "blanes_moan_s6", "odeint_rk4", "odeint_dopri5"}) {
-        const method_spec m = *resolve_method(name, {});
-        run_request rq;
-        rq.dt = dt;
-        rq.tolerance = 1e-8;
-        rq.energy = true;
-        rq.energy_series_every = std::max<std::size_t>(1, std::size_t((chosen->t_end - chosen->t0) / dt / 400));
-        rq.timing_repeats = 0;
-        const run_result r = p.run(m, rq, chosen->t0, chosen->t_end, p.x0);
-        for (const auto& [t, e] : r.energy_series) csv.stream() << name << "," << t << "," << e << "\n";
-        names.push_back(name);
+    csv.stream() << "scene,method,setting,t,energy_error\n";
+    csv.stream().precision(8);
+    for (const scene& s : scenes) {
+        if (s.ensemble) continue;  // the chaos map: one dt, its own section
+        // Level 1e-8, or the tightest above it a symplectic method reaches (below it rounding, not the
+        // method, sets the drift); the symplectic run reaching it fastest; the non-symplectic method
+        // fastest at that level, at its run of the nearest time (equal cost).
+        std::optional<std::pair<const scene_method*, double>> ours;
+        double level = 0;
+        for (double l : {1e-4, 1e-6, 1e-8})
+            if (const auto f = fastest_at(rows, s, l, true)) ours = f, level = l;
+        if (!ours) continue;
+        const report_row* a = nearest_run(rows, *ours->first, ours->second);
+        std::optional<std::pair<const scene_method*, double>> theirs;
+        for (double l = level; l <= 1e-4 * 1.0001 && !theirs; l *= 100) theirs = fastest_at(rows, s, l, false);
+        const report_row* b = theirs ? nearest_run(rows, *theirs->first, a->r.seconds) : nullptr;
+        if (panels.empty())
+            md << "## Energy error against time\n\nPer scene, the symplectic run that reaches a max energy error of "
+                  "1e-8 fastest (or the tightest level above it one reaches), against the non-symplectic method fastest at that level (or the nearest "
+                  "level it reaches), at its run of about the same time: equal cost (energy_vs_time.csv"
+               << (plots ? ", energy_vs_time.png" : "") << "; log time axis).\n\n";
+        panel p{&s, {}};
+        for (const report_row* r : {a, b}) {
+            if (!r) continue;
+            run_request rq = r->run->request();
+            rq.energy = true;
+            rq.energy_series_every = std::max<std::size_t>(1, r->r.steps / 2000);
+            rq.timing_repeats = 0;
+            const run_result out = r->p->run(r->method(), rq, s.t0, s.t_end, r->p->x0);
+            const std::string setting = (r->run->dt > 0 ? "dt " : "tolerance ") + format_number(r->run->setting(), 3);
+            std::string head = csv_line({s.name, r->method().name, setting});
+            head.pop_back();  // csv_line ends the line
+            for (const auto& [t, e] : out.energy_series)
+                if (t > s.t0) csv.stream() << head << "," << t << "," << e << "\n";
+            p.labels.push_back(r->method().name + ", " + setting + ", " + format_number(r->r.seconds, 2) + " s");
+        }
+        md << "- " << markdown_cell(s.name) << ": " << markdown_cell(p.labels[0])
+           << (p.labels.size() > 1 ? " against " + markdown_cell(p.labels[1]) : std::string(" (no non-symplectic method reaches 1e-4)"))
+           << "\n";
+        panels.push_back(std::move(p));
     }
     csv.commit();
+    if (!panels.empty()) md << "\n";
     if (!plots) return;
     atomic_file gp(dir / "energy_vs_time.gp");
-    gp.stream() << "set terminal pngcairo size 900,600\nset output " << gnuplot_string("energy_vs_time.png")
-                << "\nset datafile separator ','\nset logscale y\nset format y '10^{%L}'\nset xlabel 't'\n"
-                << "set ylabel 'relative energy error'\nset title "
-                << gnuplot_string(chosen->name + ": dt = " + format_number(dt) + " (dopri5: tolerance 1e-8)")
-                << " noenhanced\nset key outside noenhanced\nplot ";
-    for (std::size_t i = 0; i < names.size(); ++i)
-        gp.stream() << (i ? ", " : "") << gnuplot_string("energy_vs_time.csv") << " using (strcol(1) eq "
-                    << gnuplot_string(names[i]) << " ? $2 : NaN):($3 > 0 ? $3 : NaN) with lines title "
-                    << gnuplot_string(names[i]) << " noenhanced";
-    gp.stream() << "\n";
+    const int cols = panels.size() > 1 ? 2 : 1, rows_n = int((panels.size() + 1) / 2);
+    gp.stream() << "set terminal pngcairo size " << 900 * cols << "," << 420 * rows_n << " font ',10'\nset output "
+                << gnuplot_string("energy_vs_time.png") << "\nset datafile separator ','\nset logscale xy\n"
+                << "set format x '10^{%L}'\nset format y '10^{%L}'\nset xlabel 't'\n"
+                << "set ylabel 'relative energy error'\nset key below font ',8' noenhanced\nset grid\n"
+                << "set multiplot layout " << rows_n << "," << cols << "\n";
+    for (const panel& p : panels) {
+        gp.stream() << "set title " << gnuplot_string(p.s->name) << " noenhanced\nplot ";
+        const char* colours[] = {"#0072b2", "#d55e00"};
+        for (std::size_t i = 0; i < p.labels.size(); ++i) {
+            const std::string method = p.labels[i].substr(0, p.labels[i].find(", "));
+            gp.stream() << (i ? ", " : "") << gnuplot_string("energy_vs_time.csv") << " using (strcol(1) eq "
+                        << gnuplot_string(p.s->name) << " && strcol(2) eq " << gnuplot_string(method)
+                        << " ? $4 : NaN):($5 > 0 ? $5 : NaN) with lines lw 1.5 lc rgb " << gnuplot_string(colours[i])
+                        << " title " << gnuplot_string(p.labels[i] + (i ? " (not symplectic)" : " (symplectic)"));
+        }
+        gp.stream() << "\n";
+    }
+    gp.stream() << "unset multiplot\n";
     gp.commit();
     run_gnuplot(dir / "energy_vs_time.gp", dir / "energy_vs_time.png");
 }

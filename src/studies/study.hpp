@@ -15,6 +15,8 @@
 
 namespace sympl::app {
 
+struct report_row;  // report_rows.hpp
+
 // One line of progress on a terminal (nothing when stderr is not one).
 struct progress {
     bool tty = isatty(STDERR_FILENO);
@@ -41,7 +43,11 @@ void kepler_099_study(const study_context& c);
 void long_run_study(const study_context& c);
 void extreme_study(const study_context& c);
 void energy_long_span_study(const study_context& c);
-// The energy error along the run for a few methods on the first Kepler scene.
-void energy_series_study(const std::vector<scene>& scenes, const std::filesystem::path& dir, bool plots);
+// The energy error along the run on every Hamiltonian scene with a sweep: its
+// fastest symplectic run at energy level 1e-8 (or the tightest above) against the
+// fastest non-symplectic method there, at its run of the nearest time; one
+// line per scene into `summary`.
+void energy_series_study(const std::vector<scene>& scenes, const std::vector<report_row>& rows,
+                         const std::filesystem::path& dir, bool plots, std::ostream& summary);
 
 }  // namespace sympl::app

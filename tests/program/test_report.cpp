@@ -132,4 +132,53 @@ TEST_CASE("report: the stiff and extreme studies (stability map, Kepler e = 0.99
     fs::remove_all(dir);
 }
 
+TEST_CASE("report: a scene with a single dt says so, writes no table, and summary.md lists only its files") {
+    const fs::path dir = scratch_directory("sympl_test_single_dt");
+    fs::remove_all(dir);
+    const scene s = parse_scene("name = \"one\"\nsystem = \"pendulum\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.1\nt_end = 1\n",
+                                "one.toml");
+    std::ostringstream out;
+    run_report({s}, {dir.string(), true, false, false}, out);
+    CHECK(out.str().find("one: a single dt, so no work-precision curve") != std::string::npos);
+    CHECK(out.str().find("fastest sympl") == std::string::npos);  // no empty table
+    const std::string summary = (std::stringstream() << std::ifstream(dir / "summary.md").rdbuf()).str();
+    CHECK(summary.find("a single dt") != std::string::npos);
+    const std::string files = summary.substr(summary.find("## Files"));
+    for (const char* absent : {"work_precision.png", "energy_long_span", "time_to_accuracy.csv", "stability.csv"}) {
+        CAPTURE(absent);
+        CHECK(files.find(absent) == std::string::npos);
+        CHECK_FALSE(fs::exists(dir / absent));
+    }
+    CHECK(files.find("work_precision.csv") != std::string::npos);
+    fs::remove_all(dir);
+}
+
+TEST_CASE("report: two measures side by side, a pick per level, order-one runs flagged and left out") {
+    const fs::path dir = scratch_directory("sympl_test_measures");
+    fs::remove_all(dir);
+    // Kepler e = 0.5 over 2 orbits: dt = 5 throws the leapfrog off the orbit (error of order one).
+    const scene s = parse_scene(R"(name = "kep"
+system = "kepler"
+methods = ["leapfrog_kdk", "blanes_moan_s6", "odeint_dopri5"]
+dt = [5.0, 0.05, 0.02, 0.01]
+tolerances = [1e-6, 1e-9]
+t_end = 12.566370614359172
+)",
+                                "kep.toml");
+    std::ostringstream out;
+    run_report({s}, {dir.string(), true, false, false}, out);
+    const std::string summary = (std::stringstream() << std::ifstream(dir / "summary.md").rdbuf()).str();
+    CHECK(summary.find("## Fastest method per final error") != std::string::npos);
+    CHECK(summary.find("## Fastest method per max energy error") != std::string::npos);
+    CHECK(summary.find("| pick |") != std::string::npos);
+    CHECK(summary.find("reached an error of order one") != std::string::npos);
+    CHECK(summary.find("- kep, leapfrog_kdk at dt 5") != std::string::npos);
+    CHECK(out.str().find("max energy error:") != std::string::npos);
+    const auto rows = read_csv(dir / "time_to_accuracy.csv");
+    REQUIRE(rows.size() > 1);
+    CHECK(rows[0][1] == "measure");
+    for (std::size_t i = 1; i < rows.size(); ++i) CHECK(rows[i][4] != "");
+    fs::remove_all(dir);
+}
+
 }  // namespace test_program_test_report

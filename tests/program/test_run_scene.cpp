@@ -132,7 +132,7 @@ TEST_CASE("run: a sweep runs its first (largest) value, says so, and the impossi
                                 "sweep.toml");
     std::ostringstream text;
     run_scene(s, false, text);
-    CHECK(text.str().find("(a sweep: each method runs its first, largest, value; `sympl report` runs them all)") !=
+    CHECK(text.str().find("(a sweep: leapfrog_kdk runs its first, largest, dt here; `sympl report` runs them all)") !=
           std::string::npos);
     std::ostringstream json;
     run_scene(s, true, json);
@@ -455,6 +455,37 @@ TEST_CASE("run: an error of order one is flagged, not printed as an ordinary row
     run_scene(parse_scene(kepler + "dt = 5\n", "k.toml"), false, flagged);
     CHECK(flagged.str().find("^ ERROR OF ORDER ONE (>= 0.1): no correct digit, not a result; a smaller dt") !=
           std::string::npos);
+
+TEST_CASE("run: the heading shows what the scene has, dt as its shortest text, a sweep only for a sweep") {
+    const scene s = parse_scene("system = \"kepler\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.05\nt_end = 1\n", "one.toml");
+    std::ostringstream text;
+    run_scene(s, false, text);
+    const std::string heading = text.str().substr(0, text.str().find('\n'));
+    CHECK(heading.find("dt = 0.05,") != std::string::npos);  // not 0.050000000000000003
+    CHECK(heading.find("tolerance") == std::string::npos);   // no adaptive method
+    CHECK(text.str().find("(a sweep") == std::string::npos);
+    const scene d = parse_scene("system = \"kepler\"\nmethods = [\"odeint_dopri5\"]\ndt = 0.05\ntolerances = [1e-6]\n"
+                                "t_end = 1\n",
+                                "adaptive.toml");
+    std::ostringstream adaptive;
+    run_scene(d, false, adaptive);
+    CHECK(adaptive.str().find("tolerance 1e-06,") != std::string::npos);
+    CHECK(adaptive.str().find("dt = ") == std::string::npos);
+}
+
+TEST_CASE("run: a run whose error reaches order one is flagged, not an ordinary row") {
+    // Kepler e = 0.5 at dt = 5: the leapfrog jumps across the orbit (the issue's energy error 778).
+    const scene s = parse_scene("system = \"kepler\"\nmethods = [\"leapfrog_kdk\", \"blanes_moan_s6\"]\n"
+                                "dt = [5.0]\nt_end = 50\n[output]\nenergy_error = true\n",
+                                "coarse.toml");
+    std::ostringstream text;
+    run_scene(s, false, text);
+    CHECK(text.str().find("ERROR OF ORDER ONE") != std::string::npos);
+    const scene fine = parse_scene("system = \"kepler\"\nmethods = [\"blanes_moan_s6\"]\ndt = [0.01]\nt_end = 6\n",
+                                   "fine.toml");
+    std::ostringstream good;
+    run_scene(fine, false, good);
+    CHECK(good.str().find("ORDER ONE") == std::string::npos);
 }
 
 }  // namespace test_program_test_run_scene
