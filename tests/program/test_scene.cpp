@@ -92,8 +92,8 @@ TEST_CASE("scene: errors name the file, line and column and what was expected") 
 }
 
 TEST_CASE("scene: the built-in set parses, quick and full") {
-    CHECK(default_scenes(true).size() == 16);
-    CHECK(default_scenes(false).size() == 16);
+    CHECK(default_scenes(true).size() == 17);
+    CHECK(default_scenes(false).size() == 17);
     for (const scene& s : default_scenes(true)) {
         CAPTURE(s.name);
         CHECK(s.dt.size() >= (s.ensemble ? 1 : 3));  // an ensemble runs one step size
