@@ -129,7 +129,9 @@ inline constexpr std::array<method_kind_entry, method_kind_count> method_kind_en
      .description = "a classic stepper of Gould & Tobochnik or Sandvik"},
     {.kind = method_kind::odeint, .label = "odeint", .members = odeint_members, .odeint = true,
      .not_resumable = "it is Boost.Odeint's stepper, whose state a checkpoint does not hold"},
-    {.kind = method_kind::gauss, .label = "gauss", .members = gauss_members, .requirement = needs::general_hamiltonian},
+    {.kind = method_kind::gauss, .label = "gauss", .members = gauss_members, .requirement = needs::general_hamiltonian,
+     .not_resumable = "it starts each step's iteration from the last step's stage values, which a checkpoint does not "
+                      "hold"},
     {.kind = method_kind::tao, .label = "tao", .requirement = needs::general_hamiltonian,
      .not_resumable = "it carries a second copy of the state between steps, which a checkpoint does not hold",
      .description = "tao(<table>): Tao's explicit method for any H(q, p) (extended phase space, binding omega = 20), "
