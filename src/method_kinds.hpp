@@ -134,7 +134,8 @@ inline constexpr std::array<method_kind_entry, method_kind_count> method_kind_en
                       "hold"},
     {.kind = method_kind::tao, .label = "tao", .requirement = needs::general_hamiltonian,
      .not_resumable = "it carries a second copy of the state between steps, which a checkpoint does not hold",
-     .description = "tao(<table>): Tao's explicit method for any H(q, p) (extended phase space, binding omega = 20), "
+     .description = "tao(<table>[, omega = W]): Tao's explicit method for any H(q, p) (extended phase space; the "
+                    "binding omega unless given 4 times the fastest frequency at the start, in each component's units), "
                     "composed by a symmetric composition of leapfrog steps (leapfrog_kdk, yoshida_4, yoshida_6, ...); "
                     "symplectic in the extended space only"},
     {.kind = method_kind::semiexplicit, .label = "semiexplicit", .requirement = needs::general_hamiltonian,
@@ -213,6 +214,7 @@ struct method_spec {
     bool composition_kernel = false;
     bool lazy_kernel = false;           // Jacobi coordinates only
     bool jacobi = false;                // wh(..., coordinates = jacobi)
+    std::optional<double> omega;        // tao(<table>, omega = W); unset: from the problem's scales
 };
 
 // Whether the method is swept over tolerances (its step size controlled)

@@ -38,6 +38,7 @@
 #include "methods/gauss_newton.hpp"
 #include "methods/gauss_tableau.hpp"
 #include "methods/newton_lu.hpp"
+#include "methods/problem_scales.hpp"
 #include "methods/processing.hpp"
 #include "methods/richardson.hpp"
 #include "methods/rkn_tables.hpp"

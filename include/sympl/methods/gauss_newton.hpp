@@ -105,6 +105,9 @@ public:
         return bad;
     }
     Real pivot(Eigen::Index k) const { return lu_.matrix(k, k); }
+    // D^-1 J D of the last jacobian_at (J's eigenvalues; D: the components' scales).
+    const Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic>& scaled_jacobian() const { return jacobian_; }
+    const Eigen::Matrix<Real, Eigen::Dynamic, 1>& scales() const { return scale_; }
 
     // v <- (I - h A (x) J)^-1 v.
     template <class Vec>
