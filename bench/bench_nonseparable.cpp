@@ -16,7 +16,11 @@
 //                   cost is the same gradient pairs, counted).
 // Per-step cost: a run of n steps timed, median over rounds that run every
 // contender once (interleaved, so a slow spell of a shared machine falls on all).
-//   bench_nonseparable [--quick]
+// --energy instead: the scene's span t = 2000, each method's max relative
+// energy error and time (median of 5) over the scene's step sizes, and
+// Odeint's Bulirsch-Stoer and Fehlberg 7(8) through integrate_adaptive with
+// absolute = relative tolerance (as the program runs them), in one process.
+//   bench_nonseparable [--quick | --energy]
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -26,6 +30,8 @@
 #include <functional>
 #include <string>
 #include <vector>
+
+#include <boost/numeric/odeint.hpp>
 
 #include <sympl/sympl.hpp>
 #include <sympl/hamiltonians/double_pendulum.hpp>
@@ -211,10 +217,89 @@ struct row {
     double evaluations_per_step = 0;
 };
 
+
+// --energy: time to a max relative energy error over the scene's span.
+double median_of_5(const std::function<void()>& run) {
+    std::vector<double> t;
+    for (int r = 0; r < 5; ++r) t.push_back(seconds(run));
+    std::nth_element(t.begin(), t.begin() + 2, t.end());
+    return t[2];
+}
+
+template <class Make>
+void energy_sweep(const char* name, Make make, double span) {
+    const double e0 = sympl::energy(pendulum, start);
+    for (int k = 0; k < 9; ++k) {
+        const double dt = 0.2 * std::pow(0.005 / 0.2, k / 8.0);
+        const long n = std::lround(span / dt);
+        double worst = 0;
+        {
+            auto s = make();
+            State x = start;
+            for (long i = 0; i < n; ++i) {
+                s.step(x, dt);
+                worst = std::max(worst, std::fabs(sympl::energy(pendulum, x) / e0 - 1));
+            }
+        }
+        const double t = median_of_5([&] {
+            auto s = make();
+            State x = start;
+            for (long i = 0; i < n; ++i) s.step(x, dt);
+            sink = sink + x.q[0];
+        });
+        std::printf("%-26s dt %-9.4g max |H/H0 - 1| %.3e  %.4f s\n", name, dt, worst, t);
+    }
+}
+
+void energy_report(double span) {
+    std::printf("double pendulum over t = %g: max relative energy error and time (median of 5)\n", span);
+    energy_sweep("gauss_6", [] { return sympl::make_gauss_collocation<State>(pendulum, 3); }, span);
+    energy_sweep("gauss_4", [] { return sympl::make_gauss_collocation<State>(pendulum, 2); }, span);
+    const sympl::tao_options o = sympl::tao_options_for(pendulum, start);
+    energy_sweep("tao(yoshida_6)", [&] { return sympl::make_tao_stepper<State>(pendulum, sympl::method("yoshida_6"), o); },
+                 span);
+    energy_sweep("semiexplicit(yoshida_6)",
+                 [] { return sympl::make_semiexplicit_stepper<State>(pendulum, sympl::method("yoshida_6")); }, span);
+    namespace odeint = boost::numeric::odeint;
+    using S = std::array<double, 4>;
+    const auto rhs = [](const S& y, S& d, double) {
+        const V q(y[0], y[1]), p(y[2], y[3]);
+        V a, b;
+        pendulum.dH_dp(q, p, a);
+        pendulum.dH_dq(q, p, b);
+        d = {a[0], a[1], -b[0], -b[1]};
+    };
+    const double e0 = sympl::energy(pendulum, start);
+    for (double tol = 1e-8; tol >= 0.99e-14; tol /= 10)
+        for (int kind = 0; kind < 2; ++kind) {
+            double worst = 0;
+            const auto run = [&](bool observe) {
+                S y{start.q[0], start.q[1], start.p[0], start.p[1]};
+                const auto seen = [&](const S& z, double) {
+                    if (!observe) return;
+                    const State x(V(z[0], z[1]), V(z[2], z[3]));
+                    worst = std::max(worst, std::fabs(sympl::energy(pendulum, x) / e0 - 1));
+                };
+                if (kind == 0) odeint::integrate_adaptive(odeint::bulirsch_stoer<S>(tol, tol), rhs, y, 0.0, span, 0.01, seen);
+                else
+                    odeint::integrate_adaptive(odeint::make_controlled(tol, tol, odeint::runge_kutta_fehlberg78<S>()), rhs,
+                                               y, 0.0, span, 0.01, seen);
+                sink = sink + y[0];
+            };
+            run(true);
+            const double t = median_of_5([&] { run(false); });
+            std::printf("%-26s tol %-8.1e max |H/H0 - 1| %.3e  %.4f s\n",
+                        kind == 0 ? "odeint_bulirsch_stoer" : "odeint_fehlberg78", tol, worst, t);
+        }
+}
 }  // namespace
 
 int main(int argc, char** argv) {
     const bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
+    if (argc > 1 && std::strcmp(argv[1], "--energy") == 0) {
+        energy_report(2000);
+        return 0;
+    }
     const int rounds = quick ? 3 : 7;
     const double t_end = quick ? 50 : 200;
     std::printf("double pendulum from (1, 0.5), (0.2, -0.1), t = %g; median of %d interleaved rounds\n", t_end, rounds);
