@@ -247,6 +247,14 @@ private:
             start_euler(x, dt);
             o = iterate(x, dt, false);
         }
+        // Last attempt, where a Jacobian at y0 is too far from the stages (a
+        // step across a close encounter): Newton with the Jacobian refreshed at
+        // the stages' mean every iteration (for s = 1 Newton's method itself).
+        if (!o.converged && options_.iteration != gauss_iteration::fixed_point) {
+            start_euler(x, dt);
+            o = iterate(x, dt, true, h, t);
+            newton_.mark_stale();
+        }
         last_iterations_ = o.iterations;
         last_residual_ = double(o.correction);
         if (!o.converged) fail(o, dt, t);
@@ -321,6 +329,14 @@ private:
     // for this h; returns whether the Jacobian was evaluated here.
     bool prepare_newton(const State& x, real h, const scalar& dt, double t, bool refresh) {
         if (refresh) newton_.jacobian_at(h_, x.q, x.p);
+        factor_newton(h, dt, t);
+        return refresh;
+    }
+    void prepare_newton_at(const vector& q, const vector& p, real h, const scalar& dt, double t) {
+        newton_.jacobian_at(h_, q, p);
+        factor_newton(h, dt, t);
+    }
+    void factor_newton(real h, const scalar& dt, double t) {
         if (!newton_.factored_for(h)) {
             const Eigen::Index bad = newton_.factor(a_, h);
             if (bad >= 0)
@@ -329,16 +345,16 @@ private:
                         detail::number(dt) + " (pivot " + detail::number_text(newton_.pivot(bad)) +
                         "); expected a finite Jacobian of the vector field", 0, t);
         }
-        return refresh;
     }
 
     // Iterates from z_ until the correction is within tolerance or stops
     // decreasing at the rounding plateau, at most max_iterations times.
-    outcome iterate(const State& x, const scalar& dt, bool newton) {
+    // refresh_h: refresh the Jacobian at the stages' mean every iteration (the last attempt).
+    outcome iterate(const State& x, const scalar& dt, bool newton, real refresh_h = 0, double t = 0) {
         const int s = tableau_.stages;
         const real plateau = real(gauss_rounding_plateau / rtol_);  // in units of the tolerance
         outcome o;
-        real previous = std::numeric_limits<real>::infinity(), first = 0, best = previous;
+        real previous = std::numeric_limits<real>::infinity(), first = 0, last = 0, best = previous;
         int ratios = 0, since_best = 0;
         while (o.iterations < options_.max_iterations) {
             ++o.iterations;
@@ -348,6 +364,12 @@ private:
             for (int i = 0; i < s; ++i) {
                 dz_.col(i) = -z_.col(i);
                 for (int j = 0; j < s; ++j) dz_.col(i) += (dt * scalar(a_[i][j])) * f_.col(j);
+            }
+            if (refresh_h != real(0)) {
+                yq_ = x.q + q_half(z_.rowwise().mean(), n_);
+                yp_ = x.p + p_half(z_.rowwise().mean(), n_);
+                newton_.mark_stale();
+                prepare_newton_at(yq_, yp_, refresh_h, dt, t);
             }
             if (newton) {
                 Eigen::Map<Eigen::Matrix<scalar, Eigen::Dynamic, 1>> flat(dz_.data(), dz_.size());
@@ -362,9 +384,10 @@ private:
             // smooth function of the state, and sums up over the steps as a drift).
             const bool second = o.iterations > 1;
             const real theta = second ? e / previous : real(0);
-            if (second && previous > 1024) {  // well above rounding: the geometric mean of theta
+            if (second && previous > 1024) {  // well above rounding: for the geometric mean of theta
                 first = first > 0 ? first : previous;
-                o.contraction = std::pow(e / first, real(1) / real(++ratios));
+                last = e;
+                ++ratios;
             }
             // Converged: the correction within tolerance and what is left after it,
             // about theta / (1 - theta) times it (Hairer & Wanner, Solving ODEs II,
@@ -380,10 +403,11 @@ private:
             }
             if (within || (since_best >= 2 && best <= plateau)) {
                 o.converged = true;
-                return o;
+                break;
             }
             previous = e;
         }
+        if (ratios > 0) o.contraction = std::pow(last / first, real(1) / real(ratios));
         return o;
     }
 
