@@ -36,6 +36,7 @@
 #include "methods/extrapolation.hpp"
 #include "methods/gauss_collocation.hpp"
 #include "methods/gauss_newton.hpp"
+#include "methods/gauss_options.hpp"
 #include "methods/gauss_tableau.hpp"
 #include "methods/newton_lu.hpp"
 #include "methods/problem_scales.hpp"
