@@ -14,7 +14,7 @@
 //                   hand loop of its composed map on std::array;
 //   semiexplicit(yoshida_6)  sympl::semiexplicit_stepper (no hand loop: its
 //                   cost is the same gradient pairs, counted).
-// Per-step cost: a run of n steps timed, median over rounds that run every
+// Per-step cost: a run of n steps timed (processor time), median over rounds that run every
 // contender once (interleaved, so a slow spell of a shared machine falls on all).
 // --energy instead: the scene's span t = 2000, each method's max relative
 // energy error and time (median of 5) over the scene's step sizes, and
@@ -27,6 +27,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <functional>
 #include <string>
 #include <vector>
@@ -44,10 +45,12 @@ const sympl::hamiltonians::double_pendulum pendulum{};
 const State start(V(1.0, 0.5), V(0.2, -0.1));
 volatile double sink = 0;
 
+// Processor time of the run: on a shared machine the wall time also counts
+// the slices other processes took, and unevenly between short and long runs.
 double seconds(const std::function<void()>& run) {
-    const auto t0 = std::chrono::steady_clock::now();
+    const std::clock_t t0 = std::clock();
     run();
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return double(std::clock() - t0) / CLOCKS_PER_SEC;
 }
 
 // f = (dH/dp, -dH/dq) at y = (q, p) through the system's own gradients.
