@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <set>
 
 #include <sympl/methods/catalog.hpp>
@@ -97,20 +98,38 @@ method_spec extrapolated(const std::string& name, const std::map<std::string, ta
     return *inner;
 }
 
-// tao(<table>) or semiexplicit(<table>): a plain table (the catalog's or the
-// scene's) that composes leapfrog steps symmetrically, checked as the library
-// checks it.
+// tao(<table>[, omega = W]) or semiexplicit(<table>): a plain table (the
+// catalog's or the scene's) that composes leapfrog steps symmetrically,
+// checked as the library checks it; Tao's binding omega from the scene, or
+// unset: from the problem's scales (problem_scales.hpp).
 method_spec on_extended_phase_space(const std::string& name, method_kind kind, std::size_t prefix,
                                     const std::map<std::string, table>& inline_tables) {
-    const std::string inner_name = trimmed(name.substr(prefix, name.size() - prefix - 1));
+    std::string inner_name = trimmed(name.substr(prefix, name.size() - prefix - 1));
     const std::string usage = "; expected " + name.substr(0, prefix) +
                               "<a symmetric composition of leapfrog steps: leapfrog_kdk, yoshida_4, yoshida_6, "
-                              "kahan_li_8, ...>)";
+                              "kahan_li_8, ...>" + (kind == method_kind::tao ? "[, omega = <binding > 0>]" : "") + ")";
+    std::optional<double> omega;
+    if (const auto comma = inner_name.rfind(','); kind == method_kind::tao && comma != std::string::npos &&
+                                                  !resolve_method(inner_name, inline_tables)) {
+        const std::string option = trimmed(inner_name.substr(comma + 1));
+        const auto equals = option.find('=');
+        const std::string key = trimmed(option.substr(0, equals));
+        const std::string value = equals == std::string::npos ? "" : trimmed(option.substr(equals + 1));
+        if (key != "omega") throw invalid_argument("method '" + name + "': unknown option '" + key + "'; expected omega" + usage);
+        double w = 0;
+        const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), w);
+        if (error != std::errc{} || end != value.data() + value.size() || !std::isfinite(w) || !(w > 0))
+            throw invalid_argument("method '" + name + "': omega = '" + value + "'" + usage);
+        omega = w;
+        inner_name = trimmed(inner_name.substr(0, comma));
+    }
     const auto inner = resolve_method(inner_name, inline_tables);
     if (!inner || inner->kind != method_kind::table || inner->extrapolation_columns || inner->compensated)
         throw invalid_argument("method '" + name + "': '" + inner_name + "' is not a table" + usage);
     sympl::detail::leapfrog_composition_weights(*inner->coefficients, "method '" + name + "'");  // throws naming it
-    return spec(name, kind, inner->coefficients);
+    method_spec m = spec(name, kind, inner->coefficients);
+    m.omega = omega;
+    return m;
 }
 
 // cartesian_split(<table>): a symmetric composition of leapfrog steps, as

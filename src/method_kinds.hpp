@@ -141,10 +141,13 @@ inline constexpr std::array<method_kind_entry, method_kind_count> method_kind_en
      .description = "a classic stepper of Gould & Tobochnik or Sandvik"},
     {.kind = method_kind::odeint, .label = "odeint", .members = odeint_members, .odeint = true,
      .not_resumable = "it is Boost.Odeint's stepper, whose state a checkpoint does not hold"},
-    {.kind = method_kind::gauss, .label = "gauss", .members = gauss_members, .requirement = needs::general_hamiltonian},
+    {.kind = method_kind::gauss, .label = "gauss", .members = gauss_members, .requirement = needs::general_hamiltonian,
+     .not_resumable = "it starts each step's iteration from the last step's stage values, which a checkpoint does not "
+                      "hold"},
     {.kind = method_kind::tao, .label = "tao", .requirement = needs::general_hamiltonian,
      .not_resumable = "it carries a second copy of the state between steps, which a checkpoint does not hold",
-     .description = "tao(<table>): Tao's explicit method for any H(q, p) (extended phase space, binding omega = 20), "
+     .description = "tao(<table>[, omega = W]): Tao's explicit method for any H(q, p) (extended phase space; the "
+                    "binding omega unless given 4 times the fastest frequency at the start, in each component's units), "
                     "composed by a symmetric composition of leapfrog steps (leapfrog_kdk, yoshida_4, yoshida_6, ...); "
                     "symplectic in the extended space only"},
     {.kind = method_kind::semiexplicit, .label = "semiexplicit", .requirement = needs::general_hamiltonian,
@@ -232,6 +235,7 @@ struct method_spec {
     bool lazy_kernel = false;           // Jacobi coordinates only
     bool jacobi = false;                // wh(..., coordinates = jacobi)
     // charged: cartesian_split(<table>) and cylindrical_split(<table>) set parameters.scheme and coefficients.
+    std::optional<double> omega;        // tao(<table>, omega = W); unset: from the problem's scales
 };
 
 // Whether the method is swept over tolerances (its step size controlled)

@@ -31,13 +31,16 @@ struct run_kind<method_kind::gauss> {
     }
 };
 
-// Tao (2016): its second copy is carried from step to step (not resumable).
+// Tao (2016): its second copy is carried from step to step (not resumable);
+// omega from the scene, or 4 times the fastest frequency at the start.
 template <>
 struct run_kind<method_kind::tao> {
     template <class C>
     static steps_and_forces run(const C& c) {
         auto h = as_general(c.sys);
-        return c.drive(tao_stepper<decltype(h), typename C::State>(std::move(h), *c.m.coefficients));
+        tao_options o = tao_options_for(h, c.x);  // binding in the start's units
+        if (c.m.omega) o.omega = *c.m.omega;
+        return c.drive(tao_stepper<decltype(h), typename C::State>(std::move(h), *c.m.coefficients, o));
     }
 };
 

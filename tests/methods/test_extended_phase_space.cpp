@@ -238,7 +238,7 @@ TEST_CASE("extended phase space: copies that come apart stop the run with integr
             std::printf("omega = 0.1: %s\n", e.what());
             CHECK(what.find("omega = 0.1") != std::string::npos);
             CHECK(what.find("step ") != std::string::npos);
-            CHECK(what.find("|q - x| + |p - y| = ") != std::string::npos);
+            CHECK(what.find("|q - x| + |p - y| (in the binding's units) = ") != std::string::npos);
             CHECK(e.step > 1);
             CHECK(e.step == s.steps_taken() + 1);
             CHECK(std::isfinite(x.q[0]));

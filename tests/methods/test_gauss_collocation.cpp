@@ -8,12 +8,15 @@
 #include <limits>
 #include <string>
 #include <tuple>
+#include <vector>
 
 #include <sympl/sympl.hpp>
 #include <sympl/core/general_hamiltonian.hpp>
 #include <sympl/methods/gauss_collocation.hpp>
 #include <sympl/hamiltonians/charged_particle.hpp>
 #include <sympl/hamiltonians/double_pendulum.hpp>
+#include <sympl/hamiltonians/kepler.hpp>
+#include <sympl/hamiltonians/outer_solar_system.hpp>
 #include <sympl/hamiltonians/pendulum.hpp>
 #include <sympl/hamiltonians/product_hamiltonian.hpp>
 
@@ -203,7 +206,7 @@ TEST_CASE("gauss_collocation: s = 1, 2, 3 converge with orders 2, 4, 6 on each s
 
 TEST_CASE("gauss_collocation: the step map is symplectic to rounding (dual numbers through one step)") {
     // M^T J M = J holds exactly for the exact stage solution (GNI Thm. VI.4.3).
-    // With the iteration converged to 8 eps on values and derivatives, each
+    // With the iteration converged to rounding on values and derivatives, each
     // entry of M carries an error of a few eps |M| (amplified at most by
     // sum |d_i| = 14/3 in y1 = y0 + sum d_i Z_i); each entry of M^T J M sums
     // 2n = 4 products of two entries: bound 4 * 2 * 16 eps |M|^2.
@@ -325,12 +328,15 @@ TEST_CASE("gauss_collocation: separable Hamiltonians, the driver, counters, time
     State x = product_start;
     const auto r = integrate_until(g, x, 0.0, 1.0, 0.1);
     CHECK(r.steps == 10);
+    // The first step starts from Euler's polynomial (one evaluation), the others
+    // from the last step's; the fixed-point iteration needs no Jacobian here.
     CHECK(r.force_evaluations == r.velocity_evaluations);
-    CHECK(r.force_evaluations % 2 == 0);
-    CHECK(r.force_evaluations >= 2 * 10 * 2);
-    CHECK(g.jacobian_evaluations() == 10);
+    CHECK(r.force_evaluations == 1 + 2 * g.iterations());
+    CHECK(g.iterations() >= 10 * 2);
+    CHECK(g.jacobian_evaluations() == 0);
+    CHECK_FALSE(g.iterating_by_newton());
     CHECK(g.last_iterations() >= 2);
-    CHECK(g.last_residual() <= g.tolerance());
+    CHECK(g.last_residual() <= gauss_rounding_plateau);
 
     // Symmetric: a step back undoes a step to rounding.
     State y = product_start;
@@ -345,7 +351,7 @@ TEST_CASE("gauss_collocation: separable Hamiltonians, the driver, counters, time
     const long double e0 = energy(product, z);
     for (int i = 0; i < 20; ++i) l.step(z, 0.05L);
     CHECK(std::fabs(double(energy(product, z) - e0)) < 1e-3);
-    CHECK(l.tolerance() == doctest::Approx(8 * double(std::numeric_limits<long double>::epsilon())));
+    CHECK(l.tolerance() == doctest::Approx(double(std::numeric_limits<long double>::epsilon())));
 }
 
 TEST_CASE("gauss_collocation: bad input and a solve that does not converge name the values") {
@@ -374,7 +380,7 @@ TEST_CASE("gauss_collocation: bad input and a solve that does not converge name 
     nan_state.p[1] = std::numeric_limits<double>::quiet_NaN();
     CHECK_THROWS_AS(g.step(nan_state, 0.1), invalid_argument);
 
-    // One iteration cannot reach 8 eps from the Euler start.
+    // One iteration cannot reach rounding from the Euler start.
     gauss_options once;
     once.max_iterations = 1;
     auto h = make_gauss_collocation<State>(pendulum2, 3, once);
@@ -387,7 +393,7 @@ TEST_CASE("gauss_collocation: bad input and a solve that does not converge name 
         CHECK(w.find("dt = 0.25") != std::string::npos);
         CHECK(w.find("after 1 iteration") != std::string::npos);
         CHECK(w.find("max_iterations = 1") != std::string::npos);
-        CHECK(w.find("tolerance 1.7763568394002505e-15") != std::string::npos);  // 8 eps
+        CHECK(w.find("tolerance 2.2204460492503131e-16") != std::string::npos);  // eps
         CHECK(w.find("correction " + detail::number_text(h.last_residual())) != std::string::npos);
     }
     CHECK(max_difference(x, pendulum2_start) == 0);  // x untouched
@@ -408,6 +414,73 @@ TEST_CASE("gauss_collocation: bad input and a solve that does not converge name 
         CHECK(e.step == 1);
     }
     CHECK(max_difference(fast, before) == 0);
+}
+
+TEST_CASE("gauss_collocation: converges on a badly scaled state (the outer solar system, dt = 200 .. 1 day)") {
+    // Positions of 5 to 40 AU, momenta of 1e-11 to 1e-5: a correction measured
+    // against the largest component asked 8 eps of the momenta, which rounding
+    // cannot give, and stalled at 1.5e-13 (issue 39). Measured per component
+    // against atol + rtol |y| and stopped at the rounding plateau, every step
+    // converges: the sweep of the built-in scene (200 .. 5 days, 7 step sizes)
+    // and dt = 100, 10, 1, for s = 1, 2, 3, 20 steps each, in every iteration mode.
+    using S = phase_space<double, hamiltonians::outer_solar_system::dimension>;
+    const hamiltonians::outer_solar_system sun{};
+    const S x0 = sun.initial_state();
+    const double e0 = energy(sun, x0);
+    std::vector<double> steps{100, 10, 1};
+    for (int k = 0; k < 7; ++k) steps.push_back(200 * std::pow(5.0 / 200, k / 6.0));
+    for (const gauss_iteration mode : {gauss_iteration::automatic, gauss_iteration::fixed_point, gauss_iteration::newton})
+        for (int s = 1; s <= 3; ++s)
+            for (const double dt : steps) {
+                CAPTURE(s);
+                CAPTURE(dt);
+                CAPTURE(int(mode));
+                gauss_options options;
+                options.iteration = mode;
+                auto g = make_gauss_collocation<S>(sun, s, options);
+                S x = x0;
+                int most = 0;
+                for (int i = 0; i < 20; ++i) {
+                    REQUIRE_NOTHROW(g.step(x, dt));
+                    most = std::max(most, g.last_iterations());
+                    CHECK(g.last_residual() <= gauss_rounding_plateau);
+                }
+                // At most 30 iterations a step (measured: 2 to 21), and H kept to the
+                // method's error (the implicit midpoint's at 100-day steps: 1.6e-3).
+                CHECK(most <= 30);
+                CHECK(std::fabs(energy(sun, x) / e0 - 1) < (s == 1 ? 1e-2 : 1e-5));
+            }
+}
+
+TEST_CASE("gauss_collocation: steps across the pericentre of e = 0.99 converge by Newton refreshed at the stages") {
+    // The scene kepler_e0.99 sweeps dt = 0.002 .. 2e-5 from the pericentre
+    // (r = 0.01, speed 14). A Jacobian at y0 is too far from the stages at the
+    // larger steps (s = 2 at 0.002 crawled to 1.4e-11 in 50 iterations); the
+    // last attempt refreshes it at the stages' mean every iteration. The
+    // implicit midpoint rule at 0.002 (the step moves 3 pericentre distances)
+    // still finds no stage value, and says so.
+    using S = phase_space<double, 2>;
+    const hamiltonians::kepler k{};
+    for (int s = 1; s <= 3; ++s)
+        for (int j = 0; j < 5; ++j) {
+            const double dt = 0.002 * std::pow(0.01, j / 4.0);
+            CAPTURE(s);
+            CAPTURE(dt);
+            auto g = make_gauss_collocation<S>(k, s);
+            S x = hamiltonians::kepler::initial_state<double>(0.99);
+            const S x0 = x;
+            bool failed = false;
+            try {
+                for (int i = 0; i < 20; ++i) g.step(x, dt);
+            } catch (const integration_error& e) {
+                failed = true;
+                CHECK(std::string(e.what()).find("did not converge") != std::string::npos);
+            }
+            CHECK(failed == (s == 1 && j == 0));
+            // Converged, not accurate: these steps are far too large for the pericentre.
+            if (!failed) CHECK(std::isfinite(energy(k, x)));
+            CHECK(std::isfinite(energy(k, x0)));
+        }
 }
 
 TEST_CASE("gauss_collocation: a general H reading past the state is refused at the first step") {

@@ -53,10 +53,20 @@ struct tao_options {
     // Jayawardana & Ohsawa 2023 give Tao's method on H = (1 + q^2)(1 + p^2)/2,
     // whose own angular frequencies stay below about 10 there. The rule: a few
     // times the problem's fastest angular frequency, and dt << omega^(-1/l)
-    // for a method of order l (Tao 2016).
+    // for a method of order l (Tao 2016). tao_options_for(h, x) picks it.
     double omega = 20;
+    // kappa, momentum per position: the binding is
+    //     H_C = (kappa |q - x|^2 + |p - y|^2 / kappa) / 2,
+    // Tao's with the copies' differences measured in the state's own units
+    // (1: Tao's; the outer solar system needs about 2e-7, momenta 1e-5 beside
+    // positions of 40). Its flow is still an exact rotation.
+    double momentum_scale = 1;
+    // kappa per component (empty: momentum_scale for all), for states whose
+    // components differ in mass: kappa_k |q_k - x_k|^2 + |p_k - y_k|^2 / kappa_k.
+    std::vector<double> momentum_scales{};
     // The copies are declared unbound, and the run stopped, when
-    //     |q - x| + |p - y| > divergence_limit * (1 + |q| + |p|)
+    //     |q - x| sqrt(kappa) + |p - y| / sqrt(kappa)
+    //         > divergence_limit * (1 + |q| sqrt(kappa) + |p| / sqrt(kappa))
     // (Euclidean norms): the two copies are two approximations of the same
     // solution, so beyond 10% of the state's size neither is one.
     double divergence_limit = 0.1;
@@ -64,9 +74,9 @@ struct tao_options {
 
 // Options of semiexplicit_stepper (Jayawardana & Ohsawa 2023).
 struct semiexplicit_options {
-    // The projection's multiplier is iterated until its update is below
-    // tolerance * (1 + |q| + |p|); 0 means to rounding (8 machine epsilons),
-    // which keeps the step symplectic to rounding.
+    // The projection's multiplier is iterated until each half of its update is
+    // below tolerance times its half of the state, |q| or |p|; 0 means to
+    // rounding (8 machine epsilons), which keeps the step symplectic to rounding.
     double tolerance = 0;
     // Beyond this many iterations the step is reported as failed (the
     // iteration contracts by O(dt |d^2 H|) per sweep: too large a dt fails).
@@ -209,6 +219,13 @@ public:
         if (!isfinite(o.omega) || !(o.omega > 0))
             throw invalid_argument("tao_stepper: omega = " + detail::number_text(o.omega) +
                                    "; expected a finite binding frequency > 0 (Tao 2016 uses 20)");
+        if (!isfinite(o.momentum_scale) || !(o.momentum_scale > 0))
+            throw invalid_argument("tao_stepper: momentum_scale = " + detail::number_text(o.momentum_scale) +
+                                   "; expected a finite momentum per position > 0 (1: Tao's binding)");
+        for (const double k : o.momentum_scales)
+            if (!isfinite(k) || !(k > 0))
+                throw invalid_argument("tao_stepper: momentum_scales holds " + detail::number_text(k) +
+                                       "; expected finite momenta per position > 0");
         if (!isfinite(o.divergence_limit) || !(o.divergence_limit > 0))
             throw invalid_argument("tao_stepper: divergence_limit = " + detail::number_text(o.divergence_limit) +
                                    "; expected a finite relative limit > 0 (default 0.1)");
@@ -258,19 +275,42 @@ private:
         using std::sin;
         const P angle = 2 * P(options_.omega) * t;
         const P c = cos(angle), s = sin(angle);
-        const vector sum_q = z.q + z.x, sum_p = z.p + z.y;
-        const vector dq = z.q - z.x, dp = z.p - z.y;
-        const vector rq = scalar(c) * dq + scalar(s) * dp;
-        const vector rp = scalar(c) * dp - scalar(s) * dq;
-        z.q = (sum_q + rq) / scalar(2);
-        z.x = (sum_q - rq) / scalar(2);
-        z.p = (sum_p + rp) / scalar(2);
-        z.y = (sum_p - rp) / scalar(2);
+        for (Eigen::Index k = 0; k < z.q.size(); ++k) {
+            // The differences in units where the binding is Tao's: sqrt(kappa) dq, dp / sqrt(kappa).
+            const P root = root_kappa(k);
+            const scalar sum_q = z.q[k] + z.x[k], sum_p = z.p[k] + z.y[k];
+            const scalar dq = scalar(root) * (z.q[k] - z.x[k]), dp = (z.p[k] - z.y[k]) / scalar(root);
+            const scalar rq = (scalar(c) * dq + scalar(s) * dp) / scalar(root);
+            const scalar rp = scalar(root) * (scalar(c) * dp - scalar(s) * dq);
+            z.q[k] = (sum_q + rq) / scalar(2);
+            z.x[k] = (sum_q - rq) / scalar(2);
+            z.p[k] = (sum_p + rp) / scalar(2);
+            z.y[k] = (sum_p - rp) / scalar(2);
+        }
+    }
+    P root_kappa(Eigen::Index k) const {
+        using std::sqrt;
+        return sqrt(P(options_.momentum_scales.empty() ? options_.momentum_scale : options_.momentum_scales[k]));
+    }
+    // sqrt(sum_k kappa_k a_k^2) and sqrt(sum_k b_k^2 / kappa_k): the norms in the binding's units.
+    template <class V>
+    P kappa_norm(const V& a, bool momentum) const {
+        P sum = 0;
+        for (Eigen::Index k = 0; k < a.size(); ++k) {
+            const P r = root_kappa(k), v = primal(a[k]) * (momentum ? 1 / r : r);
+            sum += v * v;
+        }
+        using std::sqrt;
+        return sqrt(sum);
     }
 
     void advance(state_type& x, scalar dt, const P* t_start) {
         detail::check_step_size(dt, "tao_stepper");
         check_reads_once(this->h_, x, "tao_stepper");
+        if (!options_.momentum_scales.empty() && Eigen::Index(options_.momentum_scales.size()) != x.q.size())
+            throw invalid_argument("tao_stepper: momentum_scales has " + std::to_string(options_.momentum_scales.size()) +
+                                   " entries for a state of dimension " + std::to_string(x.q.size()) +
+                                   "; expected one per component");
         const bool carry = bound_ && x.q.size() == last_.q.size() && x.q == last_.q && x.p == last_.p;
         extended z = carry ? z_ : extended(x);
         bool cached = carry && cached_;
@@ -281,8 +321,8 @@ private:
         }
         const P t_end = (t_start ? *t_start : this->elapsed_) + primal(dt);
         map(z, primal(dt), cached);
-        const P d = detail::primal_norm(vector(z.q - z.x)) + detail::primal_norm(vector(z.p - z.y));
-        const P size = 1 + detail::primal_norm(z.q) + detail::primal_norm(z.p);
+        const P d = kappa_norm(vector(z.q - z.x), false) + kappa_norm(vector(z.p - z.y), true);
+        const P size = 1 + kappa_norm(z.q, false) + kappa_norm(z.p, true);
         using std::isfinite;
         const bool finite = detail::all_finite(z.q) && detail::all_finite(z.p) && detail::all_finite(z.x) &&
                             detail::all_finite(z.y) && isfinite(d);
@@ -295,7 +335,7 @@ private:
                                             "; the state is left at the start of the step",
                                         this->steps_ + 1, double(t_end - primal(dt)));
             throw integration_error(
-                "tao_stepper: the copies came apart at " + at + ": |q - x| + |p - y| = " + detail::number_text(d) +
+                "tao_stepper: the copies came apart at " + at + ": |q - x| + |p - y| (in the binding's units) = " + detail::number_text(d) +
                     " > " + detail::number_text(options_.divergence_limit) + " * (1 + |q| + |p|) = " +
                     detail::number_text(P(options_.divergence_limit) * size) + " with omega = " +
                     detail::number_text(options_.omega) +
@@ -369,9 +409,12 @@ private:
     void advance(state_type& x, scalar dt, P t_end) {
         detail::check_step_size(dt, "semiexplicit_stepper");
         check_reads_once(this->h_, x, "semiexplicit_stepper");
-        const P scale = 1 + detail::primal_norm(x.q) + detail::primal_norm(x.p);
+        // Each half of the multiplier against its own half of the state (momenta
+        // of 1e-5 beside positions of 40 would otherwise be judged on the positions).
+        const P size_q = detail::primal_norm(x.q), size_p = detail::primal_norm(x.p);
+        const P scale_q = size_q > 0 ? size_q : P(1), scale_p = size_p > 0 ? size_p : P(1);
         const P eps = std::numeric_limits<P>::epsilon();
-        const P tol = (options_.tolerance > 0 ? P(options_.tolerance) : 8 * eps) * scale;
+        const P tol = options_.tolerance > 0 ? P(options_.tolerance) : 8 * eps;
         vector mu_q = vector::Zero(x.q.size()), mu_p = vector::Zero(x.p.size());
         extended z;
         P update = std::numeric_limits<P>::infinity(), previous = update;
@@ -392,7 +435,7 @@ private:
             mu_p -= dp;
             using std::isfinite;
             previous = update;
-            update = detail::primal_norm(dq) + detail::primal_norm(dp);
+            update = std::max(detail::primal_norm(dq) / scale_q, detail::primal_norm(dp) / scale_p);
             if (!isfinite(update)) break;
             // To rounding: below the tolerance, or stalled at the rounding floor.
             if (update <= tol || (options_.tolerance == 0 && update >= previous && update <= 1e3 * tol)) {
