@@ -369,7 +369,7 @@ TEST_CASE("extended phase space: a general H reading past the state is refused a
     CHECK_NOTHROW(make_tao_stepper<SX>(h, leapfrog).step(y, 0.1));
 }
 
-TEST_CASE("extended phase space: Tao's stepper restored from carried() goes on bit for bit; without it, not") {
+TEST_CASE("extended phase space: Tao's stepper restored from carried() goes on bit for bit, and without it not") {
     const State start(V1(-3.0), V1(0.0));
     const auto observe = [](const State&, double) {};
     auto whole = make_tao_stepper<State>(product, order4);

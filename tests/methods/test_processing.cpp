@@ -227,7 +227,7 @@ TEST_CASE("processing: a kernel solved from the effective conditions alone gets 
     CHECK(std::fabs(measure_order(m, order_problem::nonquadratic_kinetic).order - 4) <= 0.15);
 }
 
-TEST_CASE("processing: a stepper restored from carried() goes on bit for bit; without it, not") {
+TEST_CASE("processing: a stepper restored from carried() goes on bit for bit, and without it not") {
     const processed_method& m = processed("bcm_2006_p6_11");
     const X2 x0 = HH::initial_state(1.0 / 8);
     const double dt = 0.1;
