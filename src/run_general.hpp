@@ -31,7 +31,8 @@ struct run_kind<method_kind::gauss> {
     }
 };
 
-// Tao (2016): its second copy is carried from step to step (not resumable).
+// Tao (2016): its second copy is carried from step to step (a checkpoint
+// holds it as the stepper's carried list).
 template <>
 struct run_kind<method_kind::tao> {
     template <class C>
