@@ -9,43 +9,43 @@ set -u
 sympl=$1 work=$2 mpi=${3:-OFF}
 rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
 fail() { echo "FAIL: $*"; exit 1; }
-# 143 trajectories of 8000 steps; a checkpoint after every 8 trajectories of a rank.
-cat > chaos.toml <<'TOML'
-name = "resumed-chaos"
-system = "henon_heiles"
-parameters = {energy = 0.125}
+# 120 orbits of 10000 steps; a checkpoint after every 8 orbits of a rank.
+cat > orbits.toml <<'TOML'
+name = "resumed-orbits"
+system = "kepler"
 methods = ["blanes_moan_s6"]
-dt = 0.05
-t_end = 400
-checkpoint = {every_steps = 64000, file = "state/chaos"}
+dt = 0.01
+t_end = 100
+checkpoint = {every_steps = 80000, file = "state/orbits"}
 [ensemble]
-grid = {q2 = {from = -0.4, to = 0.6, count = 13}, p2 = {from = -0.4, to = 0.4, count = 11}}
+grid = {eccentricity = {from = 0.05, to = 0.9, count = 120}}
 indicator = "megno"
 TOML
-"$sympl" ensemble chaos.toml --out whole --threads 2 > /dev/null || fail "the uninterrupted run failed"
+"$sympl" ensemble orbits.toml --out whole --threads 2 > /dev/null || fail "the uninterrupted run failed"
 [ -z "$(ls -A state)" ] || fail "a complete ensemble left checkpoints: $(ls state)"
 # Until some rank has saved rows (0), or the process $1 has ended (1).
 wait_for_checkpoint() {
     while kill -0 "$1" 2> /dev/null; do
-        compgen -G "state/chaos.ensemble-rank-[0-9]*" > /dev/null && return 0
+        compgen -G "state/orbits.ensemble-rank-[0-9]*" > /dev/null && return 0
         sleep 0.002
     done
     return 1
 }
-"$sympl" ensemble chaos.toml --out threads --threads 2 > /dev/null 2>&1 &
+"$sympl" ensemble orbits.toml --out threads --threads 2 > /dev/null 2>&1 &
 pid=$!
 wait_for_checkpoint $pid || fail "threads: the run ended before it saved a checkpoint"
 kill -s KILL $pid
 wait $pid 2> /dev/null
 saved=$(ls state | wc -l)
-"$sympl" ensemble chaos.toml --out threads --threads 1 --resume > /dev/null || fail "threads: the resumed run failed"
+[ "$saved" -gt 0 ] || fail "threads: killed too late, no checkpoint left to resume from"
+"$sympl" ensemble orbits.toml --out threads --threads 1 --resume > /dev/null || fail "threads: the resumed run failed"
 cmp whole/ensemble.csv threads/ensemble.csv || fail "threads: ensemble.csv differs after the resume"
 [ -z "$(ls -A state)" ] || fail "threads: checkpoints left: $(ls state)"
 echo "killed at 2 threads after $saved checkpoint file(s), resumed at 1: ensemble.csv byte-identical"
 if [ "$mpi" = ON ]; then
     root=()
     [ "$(id -u)" -eq 0 ] && root=(--allow-run-as-root)
-    mpirun "${root[@]}" --oversubscribe -np 3 "$sympl" ensemble chaos.toml --out ranks --threads 1 > /dev/null 2>&1 &
+    mpirun "${root[@]}" --oversubscribe -np 3 "$sympl" ensemble orbits.toml --out ranks --threads 1 > /dev/null 2>&1 &
     job=$!
     wait_for_checkpoint $job || fail "ranks: the job ended before it saved a checkpoint"
     rank=$(pgrep -P $job | head -n 1)
@@ -53,7 +53,8 @@ if [ "$mpi" = ON ]; then
     kill -s KILL "$rank"  # one rank lost: Open MPI ends the job
     wait $job 2> /dev/null
     saved=$(ls state | wc -l)
-    mpirun "${root[@]}" --oversubscribe -np 2 "$sympl" ensemble chaos.toml --out ranks --threads 1 --resume > /dev/null ||
+    [ "$saved" -gt 0 ] || fail "ranks: killed too late, no checkpoint left to resume from"
+    mpirun "${root[@]}" --oversubscribe -np 2 "$sympl" ensemble orbits.toml --out ranks --threads 1 --resume > /dev/null ||
         fail "ranks: the resumed job failed"
     cmp whole/ensemble.csv ranks/ensemble.csv || fail "ranks: ensemble.csv differs after the resume"
     [ -z "$(ls -A state)" ] || fail "ranks: checkpoints left: $(ls state)"
