@@ -120,7 +120,6 @@ inline constexpr std::array<method_kind_entry, method_kind_count> method_kind_en
      .description = "logh(<table>): the table in LogH fictitious time (Mikkola & Tanikawa 1999); dt is the fictitious "
                     "step; extrapolated(logh(<symmetric table>), k) as above"},
     {.kind = method_kind::classic, .label = "classic",
-     .history_not_resumable = "it carries a history between steps that the state does not hold",
      .description = "a classic stepper of Gould & Tobochnik or Sandvik"},
     {.kind = method_kind::odeint, .label = "odeint", .members = odeint_members, .odeint = true},
     {.kind = method_kind::gauss, .label = "gauss", .members = gauss_members, .requirement = needs::general_hamiltonian},
@@ -156,7 +155,7 @@ struct classic_method {
     const char* name;
     const char* description;
     // Carries a history between steps (a half-step momentum, the previous
-    // position): a checkpoint of the state alone cannot resume it bit for bit.
+    // position): a checkpoint holds it as the stepper's carried list.
     bool history = false;
     static constexpr needs requirement = Needs;
 };

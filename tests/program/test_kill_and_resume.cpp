@@ -144,8 +144,8 @@ TEST_CASE("kill and resume: a processed method, its kernel's state carried") {
         kill_and_resume("processed", kepler, "bcm_2006_p8", "t_end = 300\ndt = 0.01\n", 1000, 50));
 }
 
-TEST_CASE("kill and resume: classic steppers without a history, Gauss-Legendre, dprkn at a fixed step") {
-    for (const std::string method : {"rk4", "gauss_4", "dprkn8"}) {
+TEST_CASE("kill and resume: classic steppers with and without a history, Gauss-Legendre, dprkn at a fixed step") {
+    for (const std::string method : {"rk4", "velocity_verlet", "half_step", "predictor_corrector", "gauss_4", "dprkn8"}) {
         CAPTURE(method);
         check_byte_identical(kill_and_resume("fixed", kepler, method, "t_end = 200\ndt = 0.01\n", 1000, 50));
     }

@@ -116,9 +116,9 @@ TEST_CASE("method kinds: resumability comes from the registry row, and a refused
         CHECK_THROWS_WITH_AS(checkpointed_run(p, name), doctest::Contains(reason), sympl::invalid_argument);
     };
     refused_with(pendulum, "odeint_bulirsch_stoer", odeint_members[3].not_resumable);
-    refused_with(pendulum, "velocity_verlet", entry_of(method_kind::classic).history_not_resumable);
     for (const char* name : {"leapfrog_kdk", "chin_4a", "rk4", "gauss_4", "dprkn8", "semiexplicit(leapfrog_kdk)",
-                             "bcm_2006_p8", "tao(leapfrog_kdk)", "extrapolated(leapfrog_kdk, 2)", "odeint_rk4"}) {
+                             "bcm_2006_p8", "tao(leapfrog_kdk)", "extrapolated(leapfrog_kdk, 2)", "odeint_rk4",
+                             "velocity_verlet"}) {
         CAPTURE(name);
         CHECK(checkpointed_run(pendulum, name) == 3);  // after steps 3, 6 and 9 of 10
     }
