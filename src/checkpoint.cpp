@@ -82,17 +82,22 @@ struct body_reader {
 void write_checkpoint(const fs::path& file, const checkpoint_record& r) {
     std::ostringstream body;
     body << "scene " << r.scene_hash << "\nmethod " << r.method.size() << ' ' << r.method << "\ndt " << hex(r.dt)
-         << "\nstep " << r.step << '\n';
+         << "\nstep " << r.step << "\ntime " << hex(r.time) << '\n';
     put(body, "state", r.state);
     put(body, "force", r.memory.force);
     put(body, "velocity", r.memory.velocity);
     put(body, "q_error", r.memory.q_error);
     put(body, "p_error", r.memory.p_error);
+    put(body, "carried", r.carried);
     body << "fresh " << r.memory.force_fresh << ' ' << r.memory.velocity_fresh << "\nevaluations " << r.memory.force_evaluations << ' '
          << r.memory.velocity_evaluations << "\nmax_energy_error " << hex(r.max_energy_error) << "\ntrajectory_bytes "
          << r.trajectory_bytes << '\n';
     const std::string text = "sympl-checkpoint " + std::to_string(checkpoint_format) + "\n" + body.str() +
                              "checksum " + fnv1a_hex(body.str()) + "\n";
+    write_durably(file, text);
+}
+
+void write_durably(const fs::path& file, const std::string& text) {
     const fs::path temporary = file.string() + ".part-" + std::to_string(::getpid());
     const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     if (fd < 0) throw error("cannot write checkpoint " + temporary.string() + ": " + std::strerror(errno));
@@ -161,11 +166,16 @@ checkpoint_record read_checkpoint(const fs::path& file, const std::string& scene
         auto l = b.line("step");
         r.step = b.count(l, "step", UINT64_MAX / 2);
     }
+    {
+        auto l = b.line("time");
+        r.time = b.number(l, "time");
+    }
     r.state = b.numbers("state");
     r.memory.force = b.numbers("force");
     r.memory.velocity = b.numbers("velocity");
     r.memory.q_error = b.numbers("q_error");
     r.memory.p_error = b.numbers("p_error");
+    r.carried = b.numbers("carried");
     {
         auto l = b.line("fresh");
         r.memory.force_fresh = b.count(l, "fresh", 1) == 1;

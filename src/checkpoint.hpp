@@ -1,8 +1,9 @@
 #pragma once
 // Checkpoints of a run (`checkpoint = {every_steps = N, file = "..."}` in a
 // scene; `sympl run SCENE --resume`): after every N steps, everything the run
-// needs to continue bit for bit: the step index (time is t0 + i dt from it),
-// the state, the stepper's carried memory (stepper_memory), the counters, the
+// needs to continue bit for bit: the step index (time is t0 + i dt from it at
+// a fixed step) and the time, the state, the stepper's carried memory
+// (stepper_memory) and what else its kind carries, the counters, the
 // observed maximum energy error and how many bytes of the trajectory are
 // written. Numbers are stored as hexadecimal floats, exactly.
 //
@@ -27,21 +28,30 @@ struct checkpoint_record {
     double dt = 0;
     // Where the run is.
     std::size_t step = 0;  // steps done
+    double time = 0;       // the time after them (t0 + step dt at a fixed step)
     std::vector<double> state;  // q then p
     // The stepper's carried memory (splitting_stepper; for classic steppers
     // only the counters).
     stepper_memory<std::vector<double>> memory;
+    // What else the method carries between steps, as its kind's run lays it
+    // out: a stepper's carried() (Wisdom-Holman's coordinates, Tao's second
+    // copy, a processed kernel's state), LogH's extended state.
+    std::vector<double> carried;
     // The observer's part.
     double max_energy_error = -1;
     std::uint64_t trajectory_bytes = 0;
 };
 
-inline constexpr int checkpoint_format = 1;
+inline constexpr int checkpoint_format = 2;
 
 // FNV-1a, 64 bits, as 16 hex digits: the scene's identity and the file's checksum.
 std::string fnv1a_hex(const std::string& bytes);
 
 void write_checkpoint(const std::filesystem::path& file, const checkpoint_record& r);
+
+// `text` into `file` as a checkpoint is written: under a temporary name
+// (FILE.part-PID), fsync'ed, renamed over the previous file.
+void write_durably(const std::filesystem::path& file, const std::string& text);
 
 // The record in `file`, checked against the scene, method and dt expected;
 // a checkpoint_error says what is wrong.

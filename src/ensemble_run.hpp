@@ -44,12 +44,16 @@ inline constexpr double chaotic_megno = 4;
 
 // Runs the ensemble; rank 0 writes into `dir` (a staging directory) files
 // named `prefix` + "ensemble.csv" etc. Refuses up front, with the figures, an
-// ensemble of more than max_steps trajectory-steps.
+// ensemble of more than max_steps trajectory-steps. With the scene's
+// checkpoint, every rank saves its rows as it goes; `resume`: the rows any
+// rank saved are not computed again (ensemble_checkpoint.hpp).
 ensemble_outcome run_ensemble_scene(const scene& s, const std::filesystem::path& dir, const std::string& prefix,
-                                    int threads, double max_steps, bool plots, const exchange& ranks);
+                                    int threads, double max_steps, bool plots, const exchange& ranks,
+                                    bool resume = false);
 
-// `sympl ensemble SCENE --out DIR`: output set, summary on `out`.
+// `sympl ensemble SCENE --out DIR [--resume]`: output set, summary on `out`;
+// the checkpoints removed once the outputs are in place.
 void ensemble_command(const scene& s, const std::string& out_dir, int threads, double max_steps, const exchange& ranks,
-                      std::ostream& out);
+                      std::ostream& out, bool resume = false);
 
 }  // namespace sympl::app

@@ -88,6 +88,9 @@ void add_runs(CLI::App& app, command_line& c) {
     c.ensemble->add_option("--threads", c.threads, "threads per process (default: OMP_NUM_THREADS, else every core)")
         ->check(CLI::Range(1, 1024));
     add_max_steps(c.ensemble, c.max_steps);
+    c.ensemble->add_flag("--resume", c.resume,
+                         "continue from the rows the scene's checkpoints hold (checkpoint = {every_steps, file}), "
+                         "at any rank and thread count");
 }
 
 // The chosen command; its exit code.
@@ -96,7 +99,8 @@ int dispatch(command_line& c, exchange& ranks) {
     if (*c.systems) print_systems(c.json);
     if (*c.check) return check_table(c.kick, c.drift, c.convention, c.json);
     if (*c.ensemble || *c.report) ranks = process_exchange();
-    if (*c.ensemble) ensemble_command(load_scene(c.scene_file), c.ensemble_out, c.threads, c.max_steps, ranks, std::cout);
+    if (*c.ensemble)
+        ensemble_command(load_scene(c.scene_file), c.ensemble_out, c.threads, c.max_steps, ranks, std::cout, c.resume);
     if (*c.run) run_scene(load_scene(c.scene_file), c.json, std::cout, c.max_steps, c.resume);
     if (*c.report) {
         std::vector<scene> scenes;

@@ -21,16 +21,6 @@ static_assert([] {
     return true;
 }());
 
-// A controlled run has no checkpointed driver: its row says why it cannot resume.
-static_assert([] {
-    for (const method_kind_entry& row : method_kind_entries)
-        for (const named_method& member : row.members)
-            if (member.parameters.control == step_control::controlled && !*row.not_resumable &&
-                !*row.controlled_not_resumable)
-                return false;
-    return true;
-}());
-
 const std::array<method_kind_entry, method_kind_count>& method_kinds() { return method_kind_entries; }
 
 classic_facts classic_at(std::size_t index) {
@@ -275,7 +265,10 @@ std::optional<method_spec> resolve_method(const std::string& name, const std::ma
 std::string why_not_resumable(const method_spec& m) {
     const method_kind_entry& row = entry_of(m.kind);
     const bool history = m.kind == method_kind::classic && classic_at(m.classic).history;
-    for (const char* why : {history ? row.history_not_resumable : "",
+    const char* member = "";
+    for (const named_method& n : row.members)
+        if (n.name == m.name) member = n.not_resumable;
+    for (const char* why : {history ? row.history_not_resumable : "", member,
                             m.extrapolation_columns > 0 ? row.extrapolated_not_resumable : "", row.not_resumable,
                             adaptive(m) ? row.controlled_not_resumable : ""})
         if (*why) return "method '" + m.name + "' cannot be checkpointed: " + why;

@@ -53,7 +53,8 @@ struct method_parameters {
 struct named_method {
     const char* name;
     method_parameters parameters;
-    const char* description;  // for listings
+    const char* description;        // for listings
+    const char* not_resumable = "";  // why this member cannot resume bit for bit ("" when it can)
 };
 
 // One row per kind: what every method of the kind shares. Whether a method can
@@ -80,7 +81,8 @@ inline constexpr std::array odeint_members{
                  "Boost.Odeint controlled runge_kutta_fehlberg78, absolute = relative tolerance"},
     named_method{"odeint_bulirsch_stoer",
                  {.control = step_control::controlled, .stepper = odeint_stepper::bulirsch_stoer},
-                 "Boost.Odeint bulirsch_stoer, absolute = relative tolerance"},
+                 "Boost.Odeint bulirsch_stoer, absolute = relative tolerance",
+                 "its order and step-size history are Boost.Odeint's private state, which a checkpoint cannot hold"},
 };
 
 inline constexpr std::array gauss_members{
@@ -115,37 +117,27 @@ inline constexpr std::array charged_members{
                  "not symplectic; Boris's at |v| << c"},
 };
 
-inline constexpr const char* extrapolation_not_resumable =
-    "its extrapolation combines runs that a checkpoint does not hold";
-
 // The registry, in the order of method_kind.
 inline constexpr std::array<method_kind_entry, method_kind_count> method_kind_entries{{
     {.kind = method_kind::table, .label = "table", .requirement = needs::splitting,
-     .extrapolated_not_resumable = extrapolation_not_resumable,
      .description = "a splitting table: the catalog's (sympl tables) or a scene's own [[table]], on a separable "
                     "Hamiltonian or, with exact damped drifts, on a damped, driven system; extrapolated(<symmetric "
                     "table>, k) extrapolates it over k runs of 1..k steps (order p + 2(k - 1)); compensated(<table>) sums "
                     "the updates with Kahan's compensation (both on separable Hamiltonians); a force-gradient table "
                     "(chin_4a, ...) also needs the force's derivative"},
     {.kind = method_kind::processed, .label = "processed", .requirement = needs::separable_hamiltonian,
-     .not_resumable = "its kernel runs on a processed state that the true state does not hold",
      .description = "a processed method (blanes_2001_p6, ...): a kernel every step, its processor only where the state is "
                     "looked at; every output is the true state"},
     {.kind = method_kind::logh, .label = "logh", .fictitious_time = true, .requirement = needs::negative_potential,
-     .not_resumable = "its steps are in fictitious time, which a checkpoint does not record",
-     .extrapolated_not_resumable = extrapolation_not_resumable,
      .description = "logh(<table>): the table in LogH fictitious time (Mikkola & Tanikawa 1999); dt is the fictitious "
                     "step; extrapolated(logh(<symmetric table>), k) as above"},
     {.kind = method_kind::classic, .label = "classic",
-     .history_not_resumable = "it carries a history between steps that the state does not hold",
      .description = "a classic stepper of Gould & Tobochnik or Sandvik"},
-    {.kind = method_kind::odeint, .label = "odeint", .members = odeint_members, .odeint = true,
-     .not_resumable = "it is Boost.Odeint's stepper, whose state a checkpoint does not hold"},
+    {.kind = method_kind::odeint, .label = "odeint", .members = odeint_members, .odeint = true},
     {.kind = method_kind::gauss, .label = "gauss", .members = gauss_members, .requirement = needs::general_hamiltonian,
      .not_resumable = "it starts each step's iteration from the last step's stage values, which a checkpoint does not "
                       "hold"},
     {.kind = method_kind::tao, .label = "tao", .requirement = needs::general_hamiltonian,
-     .not_resumable = "it carries a second copy of the state between steps, which a checkpoint does not hold",
      .description = "tao(<table>[, omega = W]): Tao's explicit method for any H(q, p) (extended phase space; the "
                     "binding omega unless given 4 times the fastest frequency at the start, in each component's units), "
                     "composed by a symmetric composition of leapfrog steps (leapfrog_kdk, yoshida_4, yoshida_6, ...); "
@@ -154,11 +146,8 @@ inline constexpr std::array<method_kind_entry, method_kind_count> method_kind_en
      .description = "semiexplicit(<table>): Jayawardana & Ohsawa's semiexplicit method for any H(q, p), composed "
                     "by a symmetric composition of leapfrog steps; symplectic and symmetric"},
     {.kind = method_kind::dprkn, .label = "rkn_nonsymplectic", .members = dprkn_members,
-     .requirement = needs::quadratic_kinetic,
-     .controlled_not_resumable = "its step-size controller carries the step size and the last error between steps, "
-                                 "which a checkpoint does not hold"},
+     .requirement = needs::quadratic_kinetic},
     {.kind = method_kind::wisdom_holman, .label = "wisdom_holman", .requirement = needs::planetary,
-     .not_resumable = "it runs in democratic heliocentric or Jacobi coordinates, which a checkpoint does not hold",
      .description = "wh(<table>[, corrector = K][, kernel = composition|lazy][, coordinates = jacobi]): "
                     "Wisdom-Holman splitting of a planetary system, the table's drifts the exact Kepler flow about "
                     "the star (Jacobi: about the interior masses), its kicks the planets' interaction "
@@ -189,7 +178,7 @@ struct classic_method {
     const char* name;
     const char* description;
     // Carries a history between steps (a half-step momentum, the previous
-    // position): a checkpoint of the state alone cannot resume it bit for bit.
+    // position): a checkpoint holds it as the stepper's carried list.
     bool history = false;
     static constexpr needs requirement = Needs;
 };

@@ -166,7 +166,7 @@ private:
         if (const checkpoint_record* from = rq.checkpoint.resume) {
             step = from->step + 1;
             r.max_energy_error = from->max_energy_error;
-            if (timed) rows.start(to_state<Dim>(from->state), t0 + double(from->step) * rq.dt, true);
+            if (timed) rows.start(to_state<Dim>(from->state), from->time, true);
         }
         if (rq.checkpoint.save)
             with_checkpoints.checkpoint.save = [&](checkpoint_record& record) {

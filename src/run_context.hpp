@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <stdexcept>
 #include <type_traits>
 #include <utility>
@@ -162,43 +163,95 @@ struct kind_context : Context {
     }
 };
 
+// What a checkpoint holds of a stepper, for every kind's checkpointed run:
+// restored from the record resumed from, saved every rq.checkpoint.every_steps
+// steps (but at t_end). A stepper's memory() (splitting_stepper) goes into
+// the record's memory, its carried() (wisdom_holman_stepper, tao_stepper,
+// processed_stepper, the RKN pairs) into its carried list, unless the kind's
+// run lays that list out itself (LogH's extended state, a controller's
+// state); the counters count on from the record's.
+template <class Context, class Stepper>
+class checkpoint_keeper {
+public:
+    static constexpr bool has_memory = requires(const Stepper& s) { s.memory(); };
+    static constexpr bool has_carried = requires(const Stepper& s) { s.carried(); };
+
+    checkpoint_keeper(const Context& c, Stepper& stepper) : c_(c), stepper_(stepper) {}
+
+    // The record the run resumes from, the stepper restored from it (nullptr:
+    // the run starts at t0); `restore_carried` takes the carried list.
+    template <class RestoreCarried>
+    const checkpoint_record* restore(RestoreCarried&& restore_carried) {
+        const checkpoint_record* from = c_.rq.checkpoint.resume;
+        if (!from) return nullptr;
+        if constexpr (has_memory) stepper_.restore(from_record<typename Stepper::state_type::vector>(from->memory));
+        restore_carried(std::span<const double>(from->carried));
+        forces_before_ = from->memory.force_evaluations;
+        velocities_before_ = from->memory.velocity_evaluations;
+        done_ = from->step;
+        return from;
+    }
+    const checkpoint_record* restore() {
+        return restore([&](std::span<const double> carried) {
+            if constexpr (has_carried) stepper_.restore_carried(carried);
+        });
+    }
+
+    // After each step to time t with the (physical) state y: a checkpoint when
+    // one is due, its carried list from `carried`.
+    template <class State, class Carried>
+    void after_step(const State& y, double t, Carried&& carried) {
+        if (++done_ % c_.rq.checkpoint.every_steps != 0 || t == c_.t_end) return;
+        checkpoint_record record;
+        record.step = done_;
+        record.time = t;
+        record.state = to_vector(y);
+        if constexpr (has_memory) {
+            record.memory = to_record(stepper_.memory());
+        } else {
+            record.memory.force_evaluations = forces_before_ + sympl::detail::forces(stepper_);
+            record.memory.velocity_evaluations = velocities_before_ + sympl::detail::velocities(stepper_);
+        }
+        record.carried = carried();
+        c_.rq.checkpoint.save(record);
+    }
+    template <class State>
+    void after_step(const State& y, double t) {
+        after_step(y, t, [&] {
+            if constexpr (has_carried) return std::vector<double>(stepper_.carried());
+            else return std::vector<double>{};
+        });
+    }
+
+    std::uint64_t forces_before() const { return forces_before_; }
+
+private:
+    const Context& c_;
+    Stepper& stepper_;
+    std::uint64_t forces_before_ = 0, velocities_before_ = 0;
+    std::size_t done_ = 0;
+};
+
 // The observed run with a checkpoint every rq.checkpoint.every_steps steps,
 // or its continuation from rq.checkpoint.resume: the driver resumes at the
-// checkpoint's step (times from the integer index), the stepper from its
-// saved memory, so the rest of the run is bit for bit the uninterrupted one.
+// checkpoint's step (times from the integer index), the stepper from what it
+// carried, so the rest of the run is bit for bit the uninterrupted one.
 template <class Context, class Stepper>
 steps_and_forces checkpointed(const Context& c, Stepper& stepper) {
     using State = typename Context::State;
-    constexpr bool has_memory = requires { stepper.memory(); };
-    const checkpoint_hooks& hooks = c.rq.checkpoint;
+    checkpoint_keeper<Context, Stepper> keeper(c, stepper);
     run_options options;
-    std::uint64_t forces_before = 0, velocities_before = 0;
-    if (const checkpoint_record* from = hooks.resume) {
+    if (const checkpoint_record* from = keeper.restore()) {
         c.x = to_state<Context::dimension>(from->state);
-        if constexpr (has_memory) stepper.restore(from_record<typename State::vector>(from->memory));
-        forces_before = from->memory.force_evaluations;
-        velocities_before = from->memory.velocity_evaluations;
         options.first_step = from->step;
     }
-    std::size_t done = options.first_step;
     bool at_start = options.first_step == 0;  // the observer's first call is t0, not a step
     const auto observe = [&](const State& y, double t) {
         c.observe(y, t);
-        if (std::exchange(at_start, false)) return;
-        if (++done % hooks.every_steps != 0 || t == c.t_end) return;
-        checkpoint_record record;
-        record.step = done;
-        record.state = to_vector(y);
-        if constexpr (has_memory) {
-            record.memory = to_record(stepper.memory());
-        } else {
-            record.memory.force_evaluations = forces_before + stepper.force_evaluations();
-            record.memory.velocity_evaluations = velocities_before + stepper.velocity_evaluations();
-        }
-        hooks.save(record);
+        if (!std::exchange(at_start, false)) keeper.after_step(y, t);
     };
     const run_summary s = integrate_until(stepper, c.x, c.t0, c.t_end, c.rq.dt, observe, options);
-    return {options.first_step + s.steps, forces_before + s.force_evaluations};
+    return {options.first_step + s.steps, keeper.forces_before() + s.force_evaluations};
 }
 
 // How a kind runs: run_kind<K>::run(context), one per row of method_kind_entries.

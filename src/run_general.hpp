@@ -31,8 +31,9 @@ struct run_kind<method_kind::gauss> {
     }
 };
 
-// Tao (2016): its second copy is carried from step to step (not resumable);
-// omega from the scene, or 4 times the fastest frequency at the start.
+// Tao (2016): its second copy is carried from step to step (a checkpoint
+// holds it as the stepper's carried list); omega from the scene, or 4 times
+// the fastest frequency at the start.
 template <>
 struct run_kind<method_kind::tao> {
     template <class C>

@@ -63,15 +63,37 @@ struct run_kind<method_kind::logh> {
         return in_fictitious_time(c, std::move(inner));
     }
 
+    // Checkpointed, the record's carried list is the extended state X (the
+    // time and its momentum with q and p), the stepper's memory its memory.
     template <class C, class Stepper>
     static steps_and_forces in_fictitious_time(const C& c, Stepper stepper) {
         using Extended = typename Stepper::state_type;
         Extended X = to_extended(c.sys, c.x, c.t0);
         run_summary s;
         if constexpr (C::observed) {
-            c.observe(std::as_const(c.x), c.t0);
-            s = integrate_to_time(stepper, X, c.t_end, c.rq.dt,
-                                  [&](const Extended& y, double time) { c.observe(physical_state(y), time); });
+            const bool checkpointed = c.rq.checkpoint.every_steps > 0;
+            checkpoint_keeper<C, Stepper> keeper(c, stepper);
+            time_transformed_options options;
+            const auto restore_extended = [&](std::span<const double> carried) {
+                if (carried.size() != std::size_t(2 * X.size()))
+                    throw error("checkpoint of '" + c.m.name + "': an extended state of " +
+                                std::to_string(carried.size()) + " numbers; expected " + std::to_string(2 * X.size()) +
+                                "; not resumed from");
+                X = from_stacked<Extended>(std::vector<double>(carried.begin(), carried.end()));
+            };
+            if (const checkpoint_record* from = checkpointed ? keeper.restore(restore_extended) : nullptr) {
+                options.first_step = from->step;
+            } else {
+                c.observe(std::as_const(c.x), c.t0);
+            }
+            const auto observe = [&](const Extended& y, double time) {
+                const auto x = physical_state(y);
+                c.observe(x, time);
+                if (checkpointed) keeper.after_step(x, time, [&] { return to_vector(y); });
+            };
+            s = integrate_to_time(stepper, X, c.t_end, c.rq.dt, observe, {}, options);
+            s.steps += options.first_step;
+            s.force_evaluations += keeper.forces_before();
         } else {
             s = integrate_to_time(stepper, X, c.t_end, c.rq.dt);
         }

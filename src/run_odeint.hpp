@@ -3,10 +3,14 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <span>
+#include <vector>
 #include <type_traits>
 #include <utility>
 
 #include <boost/numeric/odeint/integrate/integrate_adaptive.hpp>
+#include <boost/numeric/odeint/integrate/max_step_checker.hpp>
+#include <boost/numeric/odeint/util/detail/less_with_sign.hpp>
 #include <sympl/interop/odeint.hpp>
 
 #include "run_context.hpp"
@@ -95,6 +99,7 @@ struct odeint_run {
 
     template <class Stepper>
     steps_and_forces run(Stepper stepper, double dt) const {
+        if (observe && rq.checkpoint.every_steps) return run_checkpointed(std::move(stepper), dt);
         odeint_workspace<double, Dim> w;
         const auto f = make_odeint_system<Dim>(sys, &w);
         OdeState y = to_odeint<Dim>(x);
@@ -110,14 +115,103 @@ struct odeint_run {
                 if (!every_step) steps = odeint::integrate_adaptive(stepper, f, y, t0, t_end, dt);
             if (every_step) steps = odeint::integrate_adaptive(stepper, f, y, t0, t_end, dt, checking_observer(at));
         } catch (const odeint::step_adjustment_error&) {
-            throw integration_error(m.name + ": Boost.Odeint rejected 500 step sizes in a row from t = " +
-                                        format_number(at.t, 17) + " (tolerance " + format_number(rq.tolerance, 3) +
-                                        "); expected a step size its error estimate accepts",
-                                    at.steps + 1, at.t);
+            rejected_in_a_row(at);
         }
         if (!every_step)
             for (double v : y)
                 if (!std::isfinite(v)) throw blow_up(steps, t_end, dt);
+        x = to_state<Dim>(y);
+        return {steps, w.evaluations};
+    }
+
+    [[noreturn]] void rejected_in_a_row(const progress& at) const {
+        throw integration_error(m.name + ": Boost.Odeint rejected 500 step sizes in a row from t = " +
+                                    format_number(at.t, 17) + " (tolerance " + format_number(rq.tolerance, 3) +
+                                    "); expected a step size its error estimate accepts",
+                                at.steps + 1, at.t);
+    }
+
+    // Checkpointed: Odeint's loops driven here as integrate_adaptive drives
+    // them (integrate_const's steps and a last one to t_end; try_step until
+    // accepted), the same calls on the same times, so that a run resumed after
+    // step k from its state, time and next step size (the record's carried
+    // list, with the evaluations) goes on bit for bit. dopri5's derivative at
+    // the state (first same as last) is evaluated again at the first step
+    // after a resume, on the same state: the same bits, counted once. The
+    // first observation after a resume is the checkpoint's, not repeated.
+    template <class Stepper>
+    steps_and_forces run_checkpointed(Stepper stepper, double dt) const {
+        constexpr bool controlled =
+            std::is_base_of_v<odeint::controlled_stepper_tag, typename Stepper::stepper_category>;
+        constexpr bool fsal = [] {
+            if constexpr (requires { typename Stepper::stepper_type::stepper_category; })
+                return std::is_same_v<typename Stepper::stepper_type::stepper_category,
+                                      odeint::explicit_error_stepper_fsal_tag>;
+            else return false;
+        }();
+        odeint_workspace<double, Dim> w;
+        const auto f = make_odeint_system<Dim>(sys, &w);
+        OdeState y = to_odeint<Dim>(x);
+        checkpoint_keeper<odeint_run, Stepper> keeper(*this, stepper);
+        progress at{.t = t0};
+        double t = t0;
+        std::size_t steps = 0;
+        const auto restore = [&](std::span<const double> carried) {
+            sympl::detail::carried_reader<double> r{carried, "checkpoint of a Boost.Odeint run"};
+            t = r.number(), dt = r.number();
+            w.evaluations = std::uint64_t(r.number()) - (fsal ? 1 : 0);
+            r.done();
+        };
+        bool skip = false;  // the next observation is the checkpoint's
+        if (const checkpoint_record* from = keeper.restore(restore)) {
+            y = to_odeint<Dim>(to_state<Dim>(from->state));
+            steps = from->step;
+            at = {.started = true, .steps = steps, .t = t};
+            skip = true;
+        }
+        const auto seen = checking_observer(at);
+        const auto observation = [&] {
+            if (std::exchange(skip, false)) return;
+            const bool start = !at.started;
+            seen(std::as_const(y), t);
+            if (!start) keeper.after_step(to_state<Dim>(y), t, [&] {
+                return std::vector<double>{t, dt, double(w.evaluations)};
+            });
+        };
+        try {
+            if constexpr (controlled) {
+                odeint::failed_step_checker fail_checker;
+                while (odeint::detail::less_with_sign(t, t_end, dt)) {
+                    observation();
+                    if (odeint::detail::less_with_sign(t_end, static_cast<double>(t + dt), dt)) dt = t_end - t;
+                    odeint::controlled_step_result result;
+                    do {
+                        result = stepper.try_step(f, y, t, dt);
+                        fail_checker();
+                    } while (result == odeint::fail);
+                    fail_checker.reset();
+                    ++steps;
+                }
+                observation();
+            } else {
+                t = t0 + static_cast<double>(steps) * dt;
+                while (odeint::detail::less_eq_with_sign(static_cast<double>(t + dt), t_end, dt)) {
+                    observation();
+                    stepper.do_step(f, y, t, dt);
+                    ++steps;
+                    t = t0 + static_cast<double>(steps) * dt;
+                }
+                observation();
+                if (const double end = t0 + dt * static_cast<double>(steps); odeint::detail::less_with_sign(end, t_end, dt)) {
+                    stepper.do_step(f, y, end, t_end - end);
+                    ++steps;
+                    t = t_end;
+                    observation();
+                }
+            }
+        } catch (const odeint::step_adjustment_error&) {
+            rejected_in_a_row(at);
+        }
         x = to_state<Dim>(y);
         return {steps, w.evaluations};
     }

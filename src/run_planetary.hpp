@@ -3,8 +3,7 @@
 // run as a Wisdom-Holman splitting (planetary/wisdom_holman_stepper.hpp), its drifts the
 // exact Kepler flows about the star, its kicks the planets' interaction, in
 // democratic heliocentric or Jacobi coordinates that the stepper keeps between
-// steps (not resumable from a checkpoint, which holds inertial coordinates),
-// with the corrector, kernel and coordinates the method names
+// steps (a checkpoint holds them as the stepper's carried list), with the corrector, kernel and coordinates the method names
 // (wh(<table>, corrector = K, kernel = ..., coordinates = ...)).
 #include "run_context.hpp"
 

@@ -369,4 +369,27 @@ TEST_CASE("extended phase space: a general H reading past the state is refused a
     CHECK_NOTHROW(make_tao_stepper<SX>(h, leapfrog).step(y, 0.1));
 }
 
+TEST_CASE("extended phase space: Tao's stepper restored from carried() goes on bit for bit, and without it not") {
+    const State start(V1(-3.0), V1(0.0));
+    const auto observe = [](const State&, double) {};
+    auto whole = make_tao_stepper<State>(product, order4);
+    State a = start;
+    integrate_steps(whole, a, 0.0, 0.01, 200, observe);
+    run_options resume;
+    resume.first_step = 77;  // stopped there, as a checkpoint stops a run, and resumed by another stepper
+    for (const bool restored : {true, false}) {
+        auto first = make_tao_stepper<State>(product, order4), second = make_tao_stepper<State>(product, order4);
+        State b = start;
+        integrate_steps(first, b, 0.0, 0.01, 77, observe);
+        if (restored) second.restore_carried(first.carried());
+        integrate_steps(second, b, 0.0, 0.01, 200, observe, resume);
+        CAPTURE(restored);
+        CHECK((max_difference(a, b) == 0) == restored);
+        if (restored) CHECK(second.max_divergence() == whole.max_divergence());
+    }
+    std::vector<double> bad = whole.carried();
+    bad.pop_back();
+    CHECK_THROWS_WITH_AS(whole.restore_carried(bad), doctest::Contains("ends early"), invalid_argument);
+}
+
 }  // namespace test_methods_test_extended_phase_space

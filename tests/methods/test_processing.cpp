@@ -227,4 +227,30 @@ TEST_CASE("processing: a kernel solved from the effective conditions alone gets 
     CHECK(std::fabs(measure_order(m, order_problem::nonquadratic_kinetic).order - 4) <= 0.15);
 }
 
+TEST_CASE("processing: a stepper restored from carried() goes on bit for bit, and without it not") {
+    const processed_method& m = processed("bcm_2006_p6_11");
+    const X2 x0 = HH::initial_state(1.0 / 8);
+    const double dt = 0.1;
+    const auto observe = [](const X2&, double) {};
+    processed_stepper<HH, X2> whole({}, m);
+    X2 a = x0;
+    integrate_steps(whole, a, 0.0, dt, 300, observe);
+    run_options resume;
+    // Stopped there, as a checkpoint stops a run, and resumed by another
+    // stepper; P^-1(P(y)) is y only to rounding (at this step not exactly).
+    resume.first_step = 50;
+    for (const bool restored : {true, false}) {
+        processed_stepper<HH, X2> first({}, m), second({}, m);
+        X2 b = x0;
+        integrate_steps(first, b, 0.0, dt, 50, observe);
+        if (restored) second.restore_carried(first.carried());
+        integrate_steps(second, b, 0.0, dt, 300, observe, resume);
+        CAPTURE(restored);
+        CHECK((max_difference(a, b) == 0) == restored);
+    }
+    std::vector<double> bad = whole.carried();
+    bad[0] = 0.5;
+    CHECK_THROWS_WITH_AS(whole.restore_carried(bad), doctest::Contains("neither 0 nor 1"), invalid_argument);
+}
+
 }  // namespace test_methods_test_processing

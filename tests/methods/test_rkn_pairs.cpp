@@ -335,4 +335,38 @@ TEST_CASE("rkn pairs: bad input is refused with the bad value named") {
     CHECK_NOTHROW(ok.step(y, 0.1));
 }
 
+TEST_CASE("rkn pairs: a controlled run resumed from its controller's state and the stepper's carried list goes on bit for bit") {
+    using S = phase_space<double, 2>;
+    control_options c;
+    c.absolute_tolerance = c.relative_tolerance = 1e-9;
+    const S start = hamiltonians::kepler::initial_state(0.8);
+    const double t_end = 30;
+    auto whole = make_rkn_stepper<dprkn6, S>(hamiltonians::kepler{});
+    S a = start;
+    std::vector<double> times;
+    const control_summary all = integrate_controlled(whole, a, 0.0, t_end, c, [&](const S&, double t) { times.push_back(t); });
+    REQUIRE(all.rejected > 0);  // the controller's memory is exercised: steps were rejected
+    // Saved when the observer sees accepted step 40, resumed by another stepper.
+    auto first = make_rkn_stepper<dprkn6, S>(hamiltonians::kepler{});
+    controller_state<double> state, saved;
+    S b = start, saved_x = start;
+    std::vector<double> carried;
+    integrate_controlled(first, b, 0.0, t_end, c, [&](const S& y, double) {
+        if (state.summary.accepted == 40) saved = state, saved_x = y, carried = first.carried();
+    }, state);
+    REQUIRE(saved.summary.accepted == 40);
+    auto second = make_rkn_stepper<dprkn6, S>(hamiltonians::kepler{});
+    second.restore_carried(carried);
+    std::vector<double> later;
+    const control_summary rest =
+        integrate_controlled(second, saved_x, 0.0, t_end, c, [&](const S&, double t) { later.push_back(t); }, saved);
+    CHECK(saved_x.q == a.q);
+    CHECK(saved_x.p == a.p);
+    CHECK(rest.accepted == all.accepted);  // the summary counts the whole run
+    CHECK(rest.rejected == all.rejected);
+    CHECK(rest.force_evaluations == all.force_evaluations);
+    CHECK(rest.largest_error == all.largest_error);
+    CHECK(later == std::vector<double>(times.begin() + 41, times.end()));  // t0 and steps 1..40 not seen again
+}
+
 }  // namespace test_methods_test_rkn_pairs

@@ -158,4 +158,30 @@ TEST_CASE("logh: a dynamic-size state follows the fixed-size one to rounding, pl
     }
 }
 
+TEST_CASE("logh: a run resumed after step k from X and the stepper's memory ends bit for bit as the whole run") {
+    const hamiltonians::kepler h{};
+    using S = splitting_stepper<logh<hamiltonians::kepler>, KX>;
+    const KX start = to_extended(h, hamiltonians::kepler::initial_state(0.9));
+    const double t_end = 12.3, ds = 0.05;
+    S whole({h}, method("blanes_moan_s6"));
+    KX a = start;
+    const auto all = integrate_to_time(whole, a, t_end, ds);
+    // Stopped after step 97 (the extended state and the memory saved), resumed by another stepper.
+    KX b = start, saved = start;
+    std::size_t step = 0;
+    S first({h}, method("blanes_moan_s6"));
+    auto memory = first.memory();
+    integrate_to_time(first, b, t_end, ds, [&](const KX& y, double) {
+        if (++step == 97) saved = y, memory = first.memory();
+    });
+    S second({h}, method("blanes_moan_s6"));
+    second.restore(memory);
+    time_transformed_options resume;
+    resume.first_step = 97;
+    const auto rest = integrate_to_time(second, saved, t_end, ds, no_observer{}, {}, resume);
+    CHECK(max_difference(saved, a) == 0);
+    CHECK(rest.steps + 97 == all.steps);
+    CHECK(second.force_evaluations() == whole.force_evaluations());
+}
+
 }  // namespace test_methods_test_time_transformation

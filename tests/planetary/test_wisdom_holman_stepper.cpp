@@ -757,4 +757,54 @@ TEST_CASE("wisdom_holman: bad input names the body") {
     }
 }
 
+TEST_CASE("wisdom_holman: a stepper restored from carried() goes on bit for bit, every variant") {
+    const planetary_system s = two_planets(1e-3);
+    const double h = two_pi / 40;
+    struct variant {
+        const char* table;
+        wisdom_holman_options options;
+    };
+    const wh_coordinates jacobi = wh_coordinates::jacobi;
+    for (const variant& v : {variant{"leapfrog_kdk", {}}, variant{"saba_2", {.corrector_order = 5}},
+                             variant{"leapfrog_dkd", {.corrector_order = 17, .kernel = wh_kernel::composition}},
+                             variant{"leapfrog_dkd", {.corrector_order = 17, .kernel = wh_kernel::lazy, .coordinates = jacobi}},
+                             variant{"sbab_3", {.coordinates = jacobi}}}) {
+        CAPTURE(v.table);
+        CAPTURE(v.options.corrector_order);
+        const auto observe = [](const State&, double) {};
+        wisdom_holman_stepper<State> whole(s.mass, s.G, method(v.table), v.options);
+        State a = s.start;
+        integrate_steps(whole, a, 0.0, h, 60, observe);
+        // Stopped after 23 steps, as a checkpoint would stop it, and resumed by another stepper.
+        wisdom_holman_stepper<State> first(s.mass, s.G, method(v.table), v.options);
+        State b = s.start;
+        integrate_steps(first, b, 0.0, h, 23, observe);
+        const std::vector<double> carried = first.carried();
+        wisdom_holman_stepper<State> second(s.mass, s.G, method(v.table), v.options);
+        second.restore_carried(carried);
+        run_options resume;
+        resume.first_step = 23;
+        integrate_steps(second, b, 0.0, h, 60, observe, resume);
+        CHECK(max_difference(a, b) == 0);
+        // Without what it carried, the resumed run starts from inertial coordinates: not bit for bit.
+        wisdom_holman_stepper<State> third(s.mass, s.G, method(v.table), v.options);
+        State c = s.start;
+        integrate_steps(third, c, 0.0, h, 23, observe);
+        wisdom_holman_stepper<State> forgetful(s.mass, s.G, method(v.table), v.options);
+        integrate_steps(forgetful, c, 0.0, h, 60, observe, resume);
+        CHECK(max_difference(a, c) > 0);
+    }
+    // A list that is not this stepper's is refused, the stepper left as it was.
+    wisdom_holman_stepper<State> wh(s.mass, s.G, method("leapfrog_kdk"));
+    State x = s.start;
+    wh.step(x, h);
+    std::vector<double> carried = wh.carried();
+    carried.pop_back();
+    CHECK_THROWS_WITH_AS(wh.restore_carried(carried), doctest::Contains("ends early"), invalid_argument);
+    carried = wh.carried();
+    carried.push_back(0);
+    CHECK_THROWS_WITH_AS(wh.restore_carried(carried), doctest::Contains("is longer than"), invalid_argument);
+    CHECK(wh.carried().size() + 1 == carried.size());
+}
+
 }  // namespace test_planetary_test_wisdom_holman_stepper

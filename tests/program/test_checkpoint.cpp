@@ -24,6 +24,7 @@ checkpoint_record sample() {
     r.method = "compensated(blanes_moan_s6)";
     r.dt = 0.1;  // not a binary fraction: must come back to the last bit
     r.step = 123456789;
+    r.time = 12345678.9;
     r.state = {std::nextafter(1.0, 2.0), -0.0, 1e-310, -7.25};
     r.memory.force = {0.3, -0.7};
     r.memory.velocity = {1.0 / 3, 2.0 / 3};
@@ -32,6 +33,7 @@ checkpoint_record sample() {
     r.memory.force_fresh = true;
     r.memory.force_evaluations = 987654321012ull;
     r.memory.velocity_evaluations = 42;
+    r.carried = {1, 0, -1.0 / 7, 1e300};
     r.max_energy_error = 4.0123456789012345e-9;
     r.trajectory_bytes = 1113699;
     return r;
@@ -60,6 +62,8 @@ TEST_CASE("checkpoint: every number comes back to the last bit") {
     write_checkpoint(dir / "c", r);
     const checkpoint_record back = read_checkpoint(dir / "c", r.scene_hash, r.method, r.dt);
     CHECK(back.step == r.step);
+    CHECK(back.time == r.time);
+    CHECK(back.carried == r.carried);
     CHECK(back.state == r.state);
     CHECK(std::signbit(back.state[1]));
     CHECK(back.memory.force == r.memory.force);

@@ -94,6 +94,7 @@ TEST_CASE("method kinds: resumability comes from the registry row, and a refused
         for (const named_method& member : row.members) {
             const std::string why = why_not_resumable(*resolve_method(member.name, {}));
             const char* reason = *row.not_resumable                                   ? row.not_resumable
+                                 : *member.not_resumable                                ? member.not_resumable
                                  : member.parameters.control == step_control::controlled ? row.controlled_not_resumable
                                                                                        : "";
             CHECK(why == (*reason ? "method '" + std::string(member.name) + "' cannot be checkpointed: " + reason : ""));
@@ -116,18 +117,18 @@ TEST_CASE("method kinds: resumability comes from the registry row, and a refused
         CAPTURE(name);
         CHECK_THROWS_WITH_AS(checkpointed_run(p, name), doctest::Contains(reason), sympl::invalid_argument);
     };
-    refused_with(pendulum, "bcm_2006_p8", entry_of(method_kind::processed).not_resumable);
-    refused_with(pendulum, "tao(leapfrog_kdk)", entry_of(method_kind::tao).not_resumable);
-    refused_with(pendulum, "odeint_rk4", entry_of(method_kind::odeint).not_resumable);
-    refused_with(pendulum, "odeint_dopri5", entry_of(method_kind::odeint).not_resumable);
-    refused_with(pendulum, "dprkn8_controlled", entry_of(method_kind::dprkn).controlled_not_resumable);
-    refused_with(pendulum, "extrapolated(leapfrog_kdk, 2)", entry_of(method_kind::table).extrapolated_not_resumable);
-    refused_with(pendulum, "velocity_verlet", entry_of(method_kind::classic).history_not_resumable);
-    refused_with(make_problem("outer_solar_system", {}, {}, {}, "test"), "wh(leapfrog_kdk)",
-                 entry_of(method_kind::wisdom_holman).not_resumable);
-    for (const char* name : {"leapfrog_kdk", "chin_4a", "rk4", "gauss_4", "dprkn8", "semiexplicit(leapfrog_kdk)"}) {
+    refused_with(pendulum, "odeint_bulirsch_stoer", odeint_members[3].not_resumable);
+    for (const char* name : {"leapfrog_kdk", "chin_4a", "rk4", "gauss_4", "dprkn8", "semiexplicit(leapfrog_kdk)",
+                             "bcm_2006_p8", "tao(leapfrog_kdk)", "extrapolated(leapfrog_kdk, 2)", "odeint_rk4",
+                             "velocity_verlet"}) {
         CAPTURE(name);
         CHECK(checkpointed_run(pendulum, name) == 3);  // after steps 3, 6 and 9 of 10
+    }
+    CHECK(checkpointed_run(make_problem("outer_solar_system", {}, {}, {}, "test"), "wh(leapfrog_kdk)") == 3);
+    const problem kepler = make_problem("kepler", {}, {}, {}, "test");
+    for (const char* name : {"logh(leapfrog_kdk)", "extrapolated(logh(leapfrog_kdk), 2)"}) {
+        CAPTURE(name);
+        CHECK(checkpointed_run(kepler, name) >= 3);  // fictitious steps of 0.01 over t = 0.1
     }
 }
 
@@ -164,7 +165,7 @@ TEST_CASE("method kinds: force-gradient tables and processed methods by name, an
     CHECK(processed->kind == method_kind::processed);
     CHECK(processed->processing->order == 8);
     CHECK(requirement_of(*processed) == needs::separable_hamiltonian);
-    CHECK(why_not_resumable(*processed).find("processed state") != std::string::npos);
+    CHECK(why_not_resumable(*processed).empty());
     CHECK(resolve_method("compensated(chin_4a)", {})->compensated);
     CHECK_FALSE(resolve_method("compensated(bcm_2006_p8)", {}));
     CHECK_FALSE(resolve_method("logh(bcm_2006_p8)", {}));
@@ -241,7 +242,7 @@ TEST_CASE("method kinds: Gauss-Legendre, tao(<table>), semiexplicit(<table>) and
     REQUIRE(tao);
     CHECK(tao->kind == method_kind::tao);
     CHECK(tao->coefficients->name() == "yoshida_6");
-    CHECK(why_not_resumable(*tao).find("second copy") != std::string::npos);
+    CHECK(why_not_resumable(*tao).empty());
     const auto semi = resolve_method("semiexplicit( leapfrog_kdk )", {});
     REQUIRE(semi);
     CHECK(semi->kind == method_kind::semiexplicit);
@@ -262,7 +263,7 @@ TEST_CASE("method kinds: Gauss-Legendre, tao(<table>), semiexplicit(<table>) and
         REQUIRE(controlled);
         CHECK(adaptive(*controlled));
         CHECK(std::string(entry_of(controlled->kind).label) == "rkn_nonsymplectic");
-        CHECK(why_not_resumable(*controlled).find("step size") != std::string::npos);
+        CHECK(why_not_resumable(*controlled).empty());
     }
     // A general H(q, p): the tables are refused with what to use instead; a system
     // with no Hamiltonian at all refuses Gauss-Legendre too.
@@ -291,7 +292,7 @@ TEST_CASE("method kinds: wh(<table>) resolves a plain table and runs only on a p
     CHECK(wh->kind == method_kind::wisdom_holman);
     CHECK(wh->coefficients->name() == "leapfrog_kdk");
     CHECK(requirement_of(*wh) == needs::planetary);
-    CHECK(why_not_resumable(*wh).find("democratic heliocentric") != std::string::npos);
+    CHECK(why_not_resumable(*wh).empty());
     for (const char* bad : {"wh(chin_4a)", "wh(rk4)", "wh(extrapolated(leapfrog_kdk, 2))", "wh(nonesuch)"})
         CHECK_THROWS_WITH_AS(resolve_method(bad, {}), doctest::Contains("expected wh(<a table of kicks and drifts"),
                              sympl::invalid_argument);

@@ -52,6 +52,19 @@ struct control_summary {
     std::uint64_t force_evaluations = 0;
 };
 
+// Where a controlled run is after an accepted step and what its controller
+// carries to the next: the time, the next trial step, the last error (the PI
+// controller's memory; after an accepted step no rejection is pending) and the
+// summary so far. Saved with the state (and the stepper's carried list) when
+// the observer sees that step, and handed back to integrate_controlled, it
+// continues the run bit for bit (a checkpoint).
+template <class T>
+struct controller_state {
+    T t{};
+    double dt = 0, previous_error = 1;
+    control_summary summary;  // accepted == 0: the run starts at t0
+};
+
 // A stepper that takes a trial step from x by dt at time t, x untouched,
 // returns its error estimate in units of the options' tolerances, and on
 // accept(x) moves x to the trial; error_order k: the estimate scales as dt^k.
@@ -97,7 +110,8 @@ void check_control(const control_options& o, T t0, T t_end, const char* who) {
 // caller whose observer ends the run by an exception still has the counts).
 template <class Stepper, class Observer>
 void control_loop(Stepper& stepper, typename Stepper::state_type& x, typename Stepper::scalar t0,
-                  typename Stepper::scalar t_end, control_options o, Observer& observer, control_summary& r) {
+                  typename Stepper::scalar t_end, control_options o, Observer& observer, control_summary& r,
+                  controller_state<typename Stepper::scalar>* state = nullptr) {
     using T = typename Stepper::scalar;
     const char* who = "integrate_controlled";
     const double span = static_cast<double>(primal(t_end - t0));
@@ -108,13 +122,19 @@ void control_loop(Stepper& stepper, typename Stepper::state_type& x, typename St
 
     const double k = Stepper::error_order;
     const double alpha = o.alpha / k, beta = o.beta / k;
-    const auto f0 = forces(stepper);
+    auto f0 = forces(stepper);
     constexpr bool observed = !std::is_same_v<std::decay_t<Observer>, no_observer>;
-    if constexpr (observed) observer(std::as_const(x), t0);
     T t = t0;
     double dt = std::clamp(o.dt_initial, o.dt_min, o.dt_max);
     double previous_error = 1;
     bool after_rejection = false;
+    if (state && state->summary.accepted > 0) {  // resumed after an accepted step
+        t = state->t, dt = state->dt, previous_error = state->previous_error;
+        r = state->summary;
+        f0 -= r.force_evaluations;
+    } else if constexpr (observed) {
+        observer(std::as_const(x), t0);
+    }
     while (t < t_end) {
         const bool last = T(dt) >= t_end - t;
         const T h = last ? T(t_end - t) : T(dt);
@@ -130,13 +150,14 @@ void control_loop(Stepper& stepper, typename Stepper::state_type& x, typename St
             r.largest_error = std::max(r.largest_error, err);
             r.t = static_cast<double>(primal(t));
             r.force_evaluations = forces(stepper) - f0;
-            if constexpr (observed) observer(std::as_const(x), t);
             const double e = std::max(err, 1e-10);
             double factor = o.safety * std::pow(e, -alpha) * (beta == 0 ? 1.0 : std::pow(previous_error, beta));
             factor = std::clamp(factor, o.min_factor, after_rejection && !o.grow_after_rejection ? 1.0 : o.max_factor);
             previous_error = e;
             after_rejection = false;
             if (!last) dt = std::clamp(hd * factor, o.dt_min, o.dt_max);
+            if (state) *state = {t, dt, previous_error, r};
+            if constexpr (observed) observer(std::as_const(x), t);
         } else {
             ++r.rejected;
             after_rejection = true;
@@ -168,6 +189,23 @@ control_summary integrate_controlled(Stepper&& stepper, typename std::remove_cvr
                                      Observer&& observer = {}) {
     control_summary r;
     detail::control_loop(stepper, x, t0, t_end, options, observer, r);
+    return r;
+}
+
+// The same, `state` kept up to date before the observer sees each accepted
+// step; a state of an earlier run (summary.accepted > 0) resumes that run
+// after its step, x and the stepper as they were then (the stepper's
+// carried list restored), without observing t0 again. The summary counts the
+// whole run.
+template <class Stepper, class Observer>
+    requires error_estimating_stepper<std::remove_cvref_t<Stepper>>
+control_summary integrate_controlled(Stepper&& stepper, typename std::remove_cvref_t<Stepper>::state_type& x,
+                                     typename std::remove_cvref_t<Stepper>::scalar t0,
+                                     typename std::remove_cvref_t<Stepper>::scalar t_end, control_options options,
+                                     Observer&& observer,
+                                     controller_state<typename std::remove_cvref_t<Stepper>::scalar>& state) {
+    control_summary r;
+    detail::control_loop(stepper, x, t0, t_end, options, observer, r, &state);
     return r;
 }
 

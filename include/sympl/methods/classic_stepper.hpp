@@ -6,9 +6,14 @@
 // separable Hamiltonian. Gould & Tobochnik, ch. 3; docs/classic.md.
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <string>
+#include <tuple>
+#include <type_traits>
 #include <utility>
+#include <vector>
 
+#include "../core/carried_state.hpp"
 #include "../core/checked_reads.hpp"
 #include "../core/equations_of_motion.hpp"
 #include "../core/error.hpp"
@@ -68,6 +73,33 @@ struct step_history {
         valid = true;
     }
 };
+// A multistep rule's carried part (classic_stepper::carried()): its history,
+// a vector, or a number.
+template <class S, class State>
+void write_part(carried_writer<S>& w, const step_history<State>& h) {
+    w.flag(h.valid);
+    w.number(S(h.dt));
+    w.numbers(h.last.q);
+    w.numbers(h.last.p);
+}
+template <class S, class V>
+void write_part(carried_writer<S>& w, const V& v) {
+    if constexpr (std::is_arithmetic_v<V>) w.number(S(v));
+    else w.numbers(v);
+}
+template <class S, class State>
+void read_part(carried_reader<S>& r, step_history<State>& h) {
+    h.valid = r.flag();
+    h.dt = r.number();
+    r.numbers(h.last.q);
+    r.numbers(h.last.p);
+    if (h.last.q.size() != h.last.p.size()) r.refuse("holds a last state whose q and p differ in size");
+}
+template <class S, class V>
+void read_part(carried_reader<S>& r, V& v) {
+    if constexpr (std::is_arithmetic_v<V>) v = V(r.number());
+    else r.numbers(v);
+}
 }  // namespace detail
 
 // One stepper for every classic algorithm: Rule<State> holds the algorithm
@@ -98,6 +130,35 @@ public:
     std::uint64_t velocity_evaluations() const { return eq_.velocities; }
     void reset_counters() { eq_.forces = eq_.velocities = 0; }
     const System& system() const { return eq_.system; }
+
+    // What a multistep rule carries between steps (the state it returned
+    // last, its half-step momenta or previous positions, the last force):
+    // a stepper given restore_carried(carried()) and handed that state goes
+    // on bit for bit (a checkpoint). Rules without a history carry nothing.
+    std::vector<scalar> carried() const
+        requires std::is_floating_point_v<scalar> && requires(Rule<State>& r) { r.carried_parts(); }
+    {
+        std::vector<scalar> out;
+        detail::carried_writer<scalar> w{out};
+        // carried_parts() ties the rule's members; they are only read here.
+        std::apply([&](const auto&... part) { (detail::write_part(w, part), ...); },
+                   const_cast<classic_stepper&>(*this).carried_parts());
+        return out;
+    }
+    void restore_carried(std::span<const scalar> values)
+        requires std::is_floating_point_v<scalar> && requires(Rule<State>& r) { r.carried_parts(); }
+    {
+        detail::carried_reader<scalar> r{values, Rule<State>::name};
+        auto parts = this->carried_parts();
+        auto kept = std::apply([](const auto&... part) { return std::make_tuple(part...); }, parts);  // if it does not fit
+        try {
+            std::apply([&](auto&... part) { (detail::read_part(r, part), ...); }, parts);
+            r.done();
+        } catch (...) {
+            parts = kept;
+            throw;
+        }
+    }
 
 private:
     detail::counted_equations<System> eq_;

@@ -12,6 +12,7 @@
 // Orders, energy factors and the derivations: docs/classic.md.
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -157,6 +158,9 @@ struct velocity_verlet_rule {
         if constexpr (reuses_force) history_.remember(x, dt);
     }
 
+    // What carries from one step to the next (classic_stepper::carried()).
+    auto carried_parts() { return std::tie(history_, a_, p_half_, v_, p_predicted_); }
+
 private:
     typename State::vector a_, p_half_, v_, p_predicted_;
     detail::step_history<State> history_;
@@ -185,6 +189,9 @@ struct half_step_rule {
 
     // v_{n+1/2} (p at the half step) of the last step.
     const vector& half_step_momentum() const { return p_half_; }
+
+    // What carries from one step to the next (classic_stepper::carried()).
+    auto carried_parts() { return std::tie(history_, a_, p_half_, v_); }
 
 private:
     vector a_, p_half_, v_;
@@ -222,6 +229,11 @@ struct leapfrog_two_step_rule {
     // v_n by eq. 3.47b, one step behind the state, and its time t_n.
     const vector& central_difference_velocity() const { return central_velocity_; }
     scalar central_difference_time() const { return central_time_; }
+
+    // What carries from one step to the next (classic_stepper::carried()).
+    auto carried_parts() {
+        return std::tie(history_, a_, x_previous_, x_next_, v_half_, central_velocity_, central_time_);
+    }
 
 private:
     vector a_, x_previous_, x_next_, v_half_, central_velocity_;
@@ -272,6 +284,9 @@ struct damped_leapfrog_rule {
     }
 
     damping_treatment treatment() const { return treatment_; }
+
+    // What carries from one step to the next (classic_stepper::carried()).
+    auto carried_parts() { return std::tie(history_, force_, drag_, v_half_, v_hat_, x_hat_, v_n_, x_previous_); }
 
 private:
     damping_treatment treatment_;
@@ -359,6 +374,12 @@ private:
     typename State::vector f_n_, g_n_, f_, g_, q_, p_, q_corrected_, p_corrected_, q_previous_, p_previous_;
     int iterations_ = 0;
     detail::step_history<State> history_;
+
+public:
+    // What carries from one step to the next (classic_stepper::carried()).
+    auto carried_parts() {
+        return std::tie(history_, f_n_, g_n_, f_, g_, q_, p_, q_corrected_, p_corrected_, q_previous_, p_previous_);
+    }
 };
 
 // The steppers: one classic_stepper per rule.

@@ -19,12 +19,15 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <span>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "../core/carried_state.hpp"
 #include "../core/dual.hpp"
 #include "../core/error.hpp"
 #include "../core/general_hamiltonian.hpp"
@@ -246,6 +249,44 @@ public:
     void step(state_type& x, scalar t, scalar dt) {
         const P t0 = primal(t);
         advance(x, dt, &t0);
+    }
+
+    // What the stepper carries between steps (the second copy and the state
+    // it returned last, the gradients kept, its step count and divergences):
+    // a stepper of the same H, table and options given restore_carried(carried())
+    // and handed that state goes on bit for bit (a checkpoint).
+    std::vector<scalar> carried() const
+        requires std::is_floating_point_v<scalar>
+    {
+        std::vector<scalar> out;
+        detail::carried_writer<scalar> w{out};
+        w.flag(bound_);
+        w.flag(cached_);
+        for (const vector* v : {&z_.q, &z_.p, &z_.x, &z_.y, &last_.q, &last_.p, &this->gq_, &this->gp_}) w.numbers(*v);
+        w.number(scalar(this->steps_));
+        for (P v : {this->elapsed_, this->divergence_, this->max_divergence_}) w.number(v);
+        return out;
+    }
+    void restore_carried(std::span<const scalar> values)
+        requires std::is_floating_point_v<scalar>
+    {
+        detail::carried_reader<scalar> r{values, "tao_stepper"};
+        const bool bound = r.flag(), cached = r.flag();
+        extended z;
+        state_type last;
+        vector gq, gp;
+        for (vector* v : {&z.q, &z.p, &z.x, &z.y, &last.q, &last.p, &gq, &gp}) r.numbers(*v);
+        const scalar steps = r.number();
+        P elapsed = r.number(), divergence = r.number(), max_divergence = r.number();
+        r.done();
+        for (const vector* v : {&z.p, &z.x, &z.y, &last.q, &last.p})
+            if (v->size() != z.q.size()) r.refuse("holds copies of different sizes");
+        if (!(steps >= 0) || scalar(std::size_t(steps)) != steps) r.refuse("holds a bad step count");
+        bound_ = bound, cached_ = cached;
+        z_ = std::move(z), last_ = std::move(last);
+        this->gq_ = std::move(gq), this->gp_ = std::move(gp);
+        this->steps_ = std::size_t(steps);
+        this->elapsed_ = elapsed, this->divergence_ = divergence, this->max_divergence_ = max_divergence;
     }
 
     // One step of the map in the extended phase space, no checks (for

@@ -12,10 +12,13 @@
 // stepper and reused while the caller hands back the x it returned.
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
+#include "../core/carried_state.hpp"
 #include "../core/error.hpp"
 #include "../core/hamiltonian.hpp"
 #include "../core/phase_space.hpp"
@@ -121,8 +124,46 @@ public:
         processing_forces_ = processing_velocities_ = 0;
     }
 
-    // The kernel's state behind the last x returned (what a checkpoint would need).
+    // The kernel's state behind the last x returned.
     const State& kernel_state() const { return y_; }
+
+    // What the stepper carries between calls (the kernel's state and its
+    // memory, the x it returned last and its dt): a stepper of the same H and
+    // method given restore_carried(carried()) and handed that x goes on bit
+    // for bit (a checkpoint). The counters are not carried.
+    std::vector<scalar> carried() const
+        requires std::is_floating_point_v<scalar>
+    {
+        std::vector<scalar> out;
+        detail::carried_writer<scalar> w{out};
+        w.flag(carried_);
+        w.number(dt_);
+        const stepper_memory<vector> m = kernel_.memory();
+        for (const vector* v : {&y_.q, &y_.p, &returned_.q, &returned_.p, &m.force, &m.velocity, &m.q_error, &m.p_error})
+            w.numbers(*v);
+        w.flag(m.force_fresh);
+        w.flag(m.velocity_fresh);
+        return out;
+    }
+    void restore_carried(std::span<const scalar> values)
+        requires std::is_floating_point_v<scalar>
+    {
+        detail::carried_reader<scalar> r{values, "processed_stepper"};
+        const bool carried = r.flag();
+        const scalar dt = r.number();
+        State y, returned;
+        stepper_memory<vector> m = kernel_.memory();  // its counters stay
+        for (vector* v : {&y.q, &y.p, &returned.q, &returned.p, &m.force, &m.velocity, &m.q_error, &m.p_error})
+            r.numbers(*v);
+        m.force_fresh = r.flag();
+        m.velocity_fresh = r.flag();
+        r.done();
+        if (y.p.size() != y.q.size() || returned.q.size() != y.q.size() || returned.p.size() != y.q.size())
+            r.refuse("holds states of different sizes");
+        kernel_.restore(m);
+        carried_ = carried, dt_ = dt;
+        y_ = std::move(y), returned_ = std::move(returned);
+    }
     const H& hamiltonian() const { return kernel_.hamiltonian(); }
     const processed_method& method() const { return method_; }
 

@@ -29,10 +29,13 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
+#include "../core/carried_state.hpp"
 #include "../core/error.hpp"
 #include "../core/hamiltonian.hpp"
 #include "../core/linear_velocity.hpp"
@@ -140,6 +143,39 @@ public:
     void reset_counters() { force_evaluations_ = velocity_evaluations_ = interpolation_forces_ = 0; }
     bool first_same_as_last() const { return co_.fsal; }
     const H& hamiltonian() const { return h_; }
+
+    // What the stepper carries between steps: the forces it already has (at
+    // the start of the last attempt and, FSAL, at its end), reused when
+    // handed that q. A stepper given restore_carried(carried()) goes on bit
+    // for bit with the same evaluation counts (a checkpoint).
+    std::vector<scalar> carried() const
+        requires std::is_floating_point_v<scalar>
+    {
+        std::vector<scalar> out;
+        detail::carried_writer<scalar> w{out};
+        for (const known_force& f : known_) {
+            w.flag(f.valid);
+            for (const vector* v : {&f.q, &f.k, &f.u}) w.numbers(*v);
+        }
+        return out;
+    }
+    void restore_carried(std::span<const scalar> values)
+        requires std::is_floating_point_v<scalar>
+    {
+        detail::carried_reader<scalar> r{values, who_.c_str()};
+        std::array<known_force, 2> known;
+        for (known_force& f : known) {
+            f.valid = r.flag();
+            for (vector* v : {&f.q, &f.k, &f.u}) r.numbers(*v);
+            if (f.k.size() != f.q.size() || f.u.size() != f.q.size()) r.refuse("holds a force of another size");
+        }
+        r.done();
+        if (known[0].valid && known[1].valid && known[0].q.size() != known[1].q.size())
+            r.refuse("holds forces of different sizes");
+        for (const known_force& f : known)
+            if (f.valid) size_workspace(f.q.size());  // sizing after this would forget them
+        known_ = std::move(known);
+    }
 
     void check(const State& x, scalar dt, const char* who) const {
         using std::isfinite;

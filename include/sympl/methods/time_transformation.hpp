@@ -157,6 +157,11 @@ S physical_time(const phase_space<S, D>& X) {
 
 struct time_transformed_options {
     std::size_t max_steps = 1000000000;  // fictitious steps before the run is refused as endless
+    // Resume a run after its step `first_step` (a checkpoint): X is the
+    // extended state after it and the stepper holds the memory it had there
+    // (splitting_stepper::restore), so the next step carries its last force
+    // over as the uninterrupted run's did; steps count on from first_step.
+    std::size_t first_step = 0;
 };
 
 // Runs a stepper of logh<H> on the extended state X from its time to t_end in
@@ -164,7 +169,8 @@ struct time_transformed_options {
 // time in between (the step that would pass one is shortened to end on it,
 // its length found by the secant method). observer(X, t) is called after
 // every step. Returns steps (landing steps count once), force evaluations
-// (including those of the landing iterations) and the time reached.
+// (including those of the landing iterations) and the time reached; resumed
+// (options.first_step), the steps of this call.
 template <class Stepper, class S, int D, class Observer = no_observer>
 run_summary integrate_to_time(Stepper& stepper, phase_space<S, D>& X, S t_end, S ds, Observer&& observer = {},
                               const std::vector<S>& observation_times = {}, time_transformed_options options = {}) {
@@ -182,7 +188,8 @@ run_summary integrate_to_time(Stepper& stepper, phase_space<S, D>& X, S t_end, S
 
     const std::uint64_t forces0 = detail::forces(stepper);
     run_summary r;
-    bool carried = false;  // the stepper's last force belongs to X
+    r.steps = options.first_step;
+    bool carried = options.first_step > 0;  // the stepper's last force belongs to X
     const auto step = [&](phase_space<S, D>& x, S h, bool resume) {
         if (resume) stepper.resume_steps(x, h, 1);
         else stepper.step(x, h);
@@ -245,6 +252,7 @@ run_summary integrate_to_time(Stepper& stepper, phase_space<S, D>& X, S t_end, S
                 observer(std::as_const(X), physical_time(X));
         }
     }
+    r.steps -= options.first_step;
     r.force_evaluations = detail::forces(stepper) - forces0;
     r.velocity_evaluations = 0;
     r.t = static_cast<double>(primal(physical_time(X)));

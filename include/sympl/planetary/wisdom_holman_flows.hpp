@@ -15,6 +15,7 @@
 
 #include <Eigen/Core>
 
+#include "../core/carried_state.hpp"
 #include "../core/error.hpp"
 #include "kernels.hpp"
 #include "megno_tangent.hpp"
@@ -122,6 +123,24 @@ public:
     void restore(kept_type&& kept) {
         state_ = std::move(kept.first);
         forces_fresh_ = kept.second;
+    }
+
+    // What the flows carry between steps (the planets' state and forces, the
+    // centre of mass, whether the forces and the state are good), for
+    // wisdom_holman_stepper::carried(); the tangent is not carried.
+    void write_carried(detail::carried_writer<S>& w) const {
+        for (const auto& v : state_) w.numbers(v);
+        w.numbers(centre_);
+        w.numbers(momentum_);
+        w.flag(forces_fresh_);
+        w.flag(finite_);
+    }
+    void read_carried(detail::carried_reader<S>& r) {
+        for (auto& v : state_) r.numbers_of_size(v);
+        r.numbers(centre_);
+        r.numbers(momentum_);
+        forces_fresh_ = r.flag();
+        finite_ = r.flag();
     }
 
     const Coordinates& coordinates() const { return coords_; }

@@ -37,6 +37,7 @@
 
 #include <Eigen/Core>
 
+#include "../core/carried_state.hpp"
 #include "../core/dual.hpp"
 #include "../core/error.hpp"
 #include "../core/phase_space.hpp"
@@ -158,6 +159,39 @@ public:
     std::size_t steps_per_check() const {
         const std::size_t per_step = std::max<std::size_t>(1, ops_.size() - (joined_ ? 1 : 0));
         return corrector_weights_.empty() ? 1 : 32 * 8 * corrector_weights_.size() / per_step + 1;
+    }
+
+    // What the stepper carries between calls: its own coordinates and last
+    // forces, the state it returned last and the dt of its C^-1. A stepper of
+    // the same masses, G, table and options given restore_carried(carried())
+    // and handed that state goes on bit for bit (a checkpoint; MEGNO's
+    // tangent is not carried).
+    std::vector<scalar> carried() const {
+        std::vector<scalar> out;
+        detail::carried_writer<scalar> w{out};
+        w.flag(loaded_);
+        w.number(corrected_dt_);
+        w.numbers(last_.q);
+        w.numbers(last_.p);
+        visit([&](const auto& f) { f.write_carried(w); });
+        return out;
+    }
+    void restore_carried(std::span<const scalar> values) {
+        detail::carried_reader<scalar> r{values, "wisdom_holman_stepper"};
+        const bool loaded = r.flag();
+        const scalar corrected_dt = r.number();
+        State last;
+        r.numbers(last.q);
+        r.numbers(last.p);
+        if (last.q.size() != last.p.size() || (loaded && std::size_t(last.q.size()) != 3 * mass_.size()))
+            r.refuse("holds a state of another size than the bodies'");
+        flows_type flows = flows_;  // the stepper untouched by a list that does not fit
+        std::visit([&](auto& f) { f.read_carried(r); }, flows);
+        r.done();
+        flows_ = std::move(flows);
+        loaded_ = loaded;
+        corrected_dt_ = corrected_dt;
+        last_ = std::move(last);
     }
 
     const table& method() const { return table_; }
