@@ -455,6 +455,7 @@ TEST_CASE("run: an error of order one is flagged, not printed as an ordinary row
     run_scene(parse_scene(kepler + "dt = 5\n", "k.toml"), false, flagged);
     CHECK(flagged.str().find("^ ERROR OF ORDER ONE (>= 0.1): no correct digit, not a result; a smaller dt") !=
           std::string::npos);
+}
 
 TEST_CASE("run: the heading shows what the scene has, dt as its shortest text, a sweep only for a sweep") {
     const scene s = parse_scene("system = \"kepler\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.05\nt_end = 1\n", "one.toml");
