@@ -1,5 +1,7 @@
 // The registry entry of the charged particle in uniform E and B (see
 // systems.hpp): its own translation unit. H(q, p) does not split.
+#include <cmath>
+
 #include <sympl/hamiltonians/charged_uniform.hpp>
 
 #include "../model.hpp"
@@ -26,6 +28,13 @@ system_entry charged_uniform_entry() {
             const double gm = h.mass / (c > 0 ? std::sqrt(1 - speed2 / (c * c)) : 1.0);
             return model<3>(h, {1.0, 0.0, 0.0, 0.0, gm + h.charge * v.at("field") / 2, gm * 0.1});
         },
+        // gamma = 1 / sqrt(1 - |v0|^2 / c^2) with |v0|^2 = 1.01, the start's.
+        .period = {"gyration period 2 pi gamma m / (e B) at the start (Jackson sec. 12.2)",
+                   [](const parameter_values& v) {
+                       const double c = v.at("speed_of_light");
+                       const double gamma = c > 0 ? 1 / std::sqrt(1 - 1.01 / (c * c)) : 1.0;
+                       return two_pi * gamma * v.at("mass") / (v.at("charge") * v.at("field"));
+                   }},
     };
 }
 
