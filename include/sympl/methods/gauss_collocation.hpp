@@ -19,12 +19,15 @@
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <span>
 #include <string>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 #include <Eigen/Core>
 
+#include "../core/carried_state.hpp"
 #include "../core/dual.hpp"
 #include "../core/error.hpp"
 #include "../core/general_hamiltonian.hpp"
@@ -102,6 +105,55 @@ public:
     }
     const system_type& system() const { return h_; }
 
+    // What the next step reads beyond the state: the last step's stage values
+    // and the state they end at, its step size, the iteration's mode, the
+    // frozen Newton Jacobian and the update's compensation. A stepper of the
+    // same H, stages and options given restore_carried(carried()) and handed
+    // that state goes on bit for bit (a checkpoint); the counters are not carried.
+    std::vector<scalar> carried() const
+        requires std::is_floating_point_v<scalar>
+    {
+        std::vector<scalar> out;
+        detail::carried_writer<scalar> w{out};
+        w.flag(have_stages_);
+        w.flag(newton_mode_);
+        w.number(h_prev_);
+        for (const auto* v : {&last_q_, &last_p_}) w.numbers(*v);
+        w.numbers(z_);
+        w.numbers(compensation_);
+        newton_.write_carried(w);
+        return out;
+    }
+    // A list that does not fit is refused by name; one refused past its stage
+    // values leaves the stepper as reset() does.
+    void restore_carried(std::span<const scalar> values)
+        requires std::is_floating_point_v<scalar>
+    {
+        detail::carried_reader<scalar> r{values, "gauss_collocation_stepper"};
+        const bool have = r.flag(), newton = r.flag();
+        const real h_prev = r.number();
+        vector q, p;
+        r.numbers(q);
+        r.numbers(p);
+        std::vector<scalar> z;
+        r.numbers(z);
+        column compensation;
+        r.numbers(compensation);
+        const Eigen::Index n = q.size();
+        if (p.size() != n || Eigen::Index(z.size()) != 2 * n * tableau_.stages || compensation.size() != 2 * n)
+            r.refuse("holds stage values of another size than its state's");
+        size_workspace(n);
+        newton_.read_carried(r, a_);
+        r.done();
+        z_ = Eigen::Map<const Eigen::Matrix<scalar, Eigen::Dynamic, Eigen::Dynamic>>(z.data(), 2 * n, tableau_.stages);
+        compensation_ = compensation;
+        last_q_ = std::move(q);
+        last_p_ = std::move(p);
+        h_prev_ = h_prev;
+        newton_mode_ = newton;
+        have_stages_ = have;
+    }
+
 private:
     static constexpr int rows = State::dimension == Eigen::Dynamic ? Eigen::Dynamic : 2 * State::dimension;
     // One column per stage: Z_i = (dq, dp); fixed storage for fixed sizes.
@@ -125,7 +177,7 @@ private:
         n_ = n;
         const int s = tableau_.stages;
         newton_.resize(n, s);
-        z_.resize(2 * n, s);
+        z_.setZero(2 * n, s);  // zeros only so that carried() before a step writes numbers
         dz_.resize(2 * n, s);
         f_.resize(2 * n, s);
         delta_.resize(2 * n);
