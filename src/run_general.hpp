@@ -20,8 +20,9 @@ auto as_general(const Sys& sys) {
         return separable_as_general<Sys>{sys};
 }
 
-// Gauss-Legendre with the member's stages s, order 2s: nothing is carried
-// between steps, so a checkpoint resumes it bit for bit.
+// Gauss-Legendre with the member's stages s, order 2s: the last step's stage
+// values, its mode and frozen Newton Jacobian are carried from step to step
+// (a checkpoint holds them as the stepper's carried list).
 template <>
 struct run_kind<method_kind::gauss> {
     template <class C>
