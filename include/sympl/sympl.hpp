@@ -43,6 +43,7 @@
 #include "methods/gauss_collocation.hpp"
 #include "methods/gauss_newton.hpp"
 #include "methods/gauss_options.hpp"
+#include "methods/gauss_stage_iteration.hpp"
 #include "methods/gauss_tableau.hpp"
 #include "methods/newton_lu.hpp"
 #include "methods/problem_scales.hpp"
