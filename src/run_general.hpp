@@ -2,7 +2,7 @@
 // The kinds for any Hamiltonian H(q, p), separable or not (run_kind<gauss>,
 // <tao>, <semiexplicit>): the implicit Gauss-Legendre collocation
 // (gauss_collocation.hpp) and the two extended-phase-space methods
-// (extended_phase_space.hpp), composed by the method's table. A separable
+// (extended_phase_space.hpp, semiexplicit.hpp), composed by the method's table. A separable
 // Hamiltonian runs them too: Gauss-Legendre takes it as it is, the others as
 // separable_as_general (dH/dq = -F(q), dH/dp = dT/dp).
 #include <utility>

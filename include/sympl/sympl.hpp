@@ -51,6 +51,7 @@
 #include "methods/richardson.hpp"
 #include "methods/rkn_tables.hpp"
 #include "methods/rkn_pairs.hpp"
+#include "methods/semiexplicit.hpp"
 #include "methods/time_transformation.hpp"
 #include "planetary/coordinates.hpp"
 #include "planetary/corrector.hpp"
