@@ -134,9 +134,7 @@ inline constexpr std::array<method_kind_entry, method_kind_count> method_kind_en
     {.kind = method_kind::classic, .label = "classic",
      .description = "a classic stepper of Gould & Tobochnik or Sandvik"},
     {.kind = method_kind::odeint, .label = "odeint", .members = odeint_members, .odeint = true},
-    {.kind = method_kind::gauss, .label = "gauss", .members = gauss_members, .requirement = needs::general_hamiltonian,
-     .not_resumable = "it starts each step's iteration from the last step's stage values, which a checkpoint does not "
-                      "hold"},
+    {.kind = method_kind::gauss, .label = "gauss", .members = gauss_members, .requirement = needs::general_hamiltonian},
     {.kind = method_kind::tao, .label = "tao", .requirement = needs::general_hamiltonian,
      .description = "tao(<table>[, omega = W]): Tao's explicit method for any H(q, p) (extended phase space; the "
                     "binding omega unless given 4 times the fastest frequency at the start, in each component's units), "

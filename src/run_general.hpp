@@ -2,7 +2,7 @@
 // The kinds for any Hamiltonian H(q, p), separable or not (run_kind<gauss>,
 // <tao>, <semiexplicit>): the implicit Gauss-Legendre collocation
 // (gauss_collocation.hpp) and the two extended-phase-space methods
-// (extended_phase_space.hpp), composed by the method's table. A separable
+// (extended_phase_space.hpp, semiexplicit.hpp), composed by the method's table. A separable
 // Hamiltonian runs them too: Gauss-Legendre takes it as it is, the others as
 // separable_as_general (dH/dq = -F(q), dH/dp = dT/dp).
 #include <utility>
@@ -20,8 +20,9 @@ auto as_general(const Sys& sys) {
         return separable_as_general<Sys>{sys};
 }
 
-// Gauss-Legendre with the member's stages s, order 2s: nothing is carried
-// between steps, so a checkpoint resumes it bit for bit.
+// Gauss-Legendre with the member's stages s, order 2s: the last step's stage
+// values, its mode and frozen Newton Jacobian are carried from step to step
+// (a checkpoint holds them as the stepper's carried list).
 template <>
 struct run_kind<method_kind::gauss> {
     template <class C>

@@ -11,34 +11,19 @@
 #include <sympl/core/general_hamiltonian.hpp>
 #include <sympl/hamiltonians/product_hamiltonian.hpp>
 #include <sympl/methods/extended_phase_space.hpp>
+#include <sympl/methods/semiexplicit.hpp>
+
+#include "nonseparable_problems.hpp"
 
 namespace test_methods_test_extended_phase_space {  // one per file: the tests build in batches (CMakeLists.txt)
 
 using namespace sympl;
+using namespace sympl::nonseparable_testing;
 
 namespace {
 using V1 = Eigen::Matrix<double, 1, 1>;
 using State = phase_space<double, 1>;
 using StateL = phase_space<long double, 1>;
-
-// Tao's and J&O's test problem, from (q, p) = (-3, 0) as J&O 2023.
-const hamiltonians::product_hamiltonian product{};
-// A pendulum whose mass grows with the angle: H = p^2 / (2 (1 + q^2/2)) + 1 - cos q.
-const auto varying_mass = make_general_hamiltonian([](const auto& q, const auto& p) {
-    using std::cos;
-    return p.squaredNorm() / (2 * (1 + q.squaredNorm() / 2)) + 1 - cos(q[0]);
-});
-
-const table leapfrog = method("leapfrog_kdk");
-const table order4 = triple_jump(leapfrog);
-const table order6 = method("yoshida_6");
-
-template <class S, class Stepper>
-phase_space<S, 1> run(Stepper s, phase_space<S, 1> x, double t_end, int n) {
-    const S dt = S(t_end) / S(n);
-    for (int i = 0; i < n; ++i) s.step(x, dt);
-    return x;
-}
 
 // A long-double reference by the 8th-order semiexplicit method at 4000 steps
 // (its error is below 1e-18 there).
@@ -69,11 +54,6 @@ double measured_order(const H& h, const StateL& start, const StateL& reference, 
     return order;
 }
 
-// |det M - 1| of the 2x2 Jacobian of a one-degree-of-freedom map (M^T J M - J = (det M - 1) J).
-template <class D>
-double area_defect(const phase_space<D, 1>& x) {
-    return std::fabs(x.q[0].grad[0] * x.p[0].grad[1] - x.q[0].grad[1] * x.p[0].grad[0] - 1);
-}
 }  // namespace
 
 TEST_CASE("extended phase space: measured orders 2, 4, 6 of both methods on two non-separable H") {
@@ -203,24 +183,6 @@ TEST_CASE("extended phase space: Tao's map is symplectic in the extended space, 
     }
 }
 
-TEST_CASE("extended phase space: the semiexplicit map is symplectic in the original space to rounding") {
-    // J&O 2023: symplectic in the original phase space once the projection is
-    // solved (here to 8 machine epsilons); 1000 steps to t = 10.
-    using D2 = dual<double, 2>;
-    using S2 = phase_space<D2, 1>;
-    using V2 = Eigen::Matrix<D2, 1, 1>;
-    for (const table* t : {&leapfrog, &order4, &order6})
-        for (const auto& h : {0, 1}) {
-            S2 x(V2(D2::variable(h == 0 ? -3.0 : 2.5, 0)), V2(D2::variable(0.0, 1)));
-            x = h == 0 ? run<D2>(make_semiexplicit_stepper<S2>(product, *t), x, 10.0, 1000)
-                       : run<D2>(make_semiexplicit_stepper<S2>(varying_mass, *t), x, 10.0, 1000);
-            std::printf("semiexplicit, original space, t = 10, %-26s %s: |det M - 1| = %.2e\n", t->name().c_str(),
-                        h == 0 ? "product     " : "varying mass", area_defect(x));
-            CAPTURE(t->name());
-            CHECK(area_defect(x) <= 1e-12);
-        }
-}
-
 TEST_CASE("extended phase space: copies that come apart stop the run with integration_error") {
     // omega = 0.1 is far below the problem's frequencies (up to ~10): the
     // copies separate within a few time units; omega = 20 keeps them bound
@@ -273,13 +235,6 @@ TEST_CASE("extended phase space: copies that come apart stop the run with integr
             CHECK(e.time > 100.0);
             CHECK(e.time < 103.0);
         }
-    }
-    // The semiexplicit projection fails to converge at too large a step.
-    {
-        auto s = make_semiexplicit_stepper<State>(product, leapfrog);
-        State x = start;
-        CHECK_THROWS_AS(s.step(x, 0.5), integration_error);
-        CHECK(x.q[0] == -3.0);
     }
 }
 

@@ -500,4 +500,64 @@ TEST_CASE("gauss_collocation: a general H reading past the state is refused at t
     CHECK_NOTHROW(g.step(y, 0.1));  // the dimension it is written for
 }
 
+namespace {
+// N steps, the carried list and the state saved, M more; a fresh stepper given
+// the list and the state takes the same M steps bit for bit and with the same
+// work, and one not given the list starts from Euler's polynomial (more work).
+template <class S, class H>
+void check_resumes(const H& h, int stages, gauss_options options, S x, double dt, bool newton_expected) {
+    constexpr int N = 23, M = 40;
+    auto whole = make_gauss_collocation<S>(h, stages, options);
+    for (int i = 0; i < N; ++i) whole.step(x, dt);
+    const std::vector<double> saved = whole.carried();
+    const S at_save = x;
+    CHECK(whole.iterating_by_newton() == newton_expected);
+    whole.reset_counters();
+    for (int i = 0; i < M; ++i) whole.step(x, dt);
+    for (const bool restored : {true, false}) {
+        CAPTURE(restored);
+        auto resumed = make_gauss_collocation<S>(h, stages, options);
+        if (restored) resumed.restore_carried(saved);
+        S y = at_save;
+        for (int i = 0; i < M; ++i) resumed.step(y, dt);
+        if (restored) {
+            CHECK(max_difference(x, y) == 0);
+            CHECK(resumed.iterations() == whole.iterations());
+            CHECK(resumed.factorizations() == whole.factorizations());
+        }
+        CHECK((resumed.force_evaluations() == whole.force_evaluations()) == restored);
+    }
+}
+}  // namespace
+
+TEST_CASE("gauss_collocation: a stepper restored from carried() goes on bit for bit, in both iteration modes") {
+    gauss_options fixed;
+    fixed.iteration = gauss_iteration::fixed_point;
+    fixed.compensated = true;  // the compensation is carried too
+    check_resumes(pendulum2, 3, fixed, pendulum2_start, 0.05, false);
+    gauss_options newton;
+    newton.iteration = gauss_iteration::newton;  // the frozen Jacobian and its factors carried
+    check_resumes(pendulum2, 2, newton, pendulum2_start, 0.05, true);
+    // automatic: the outer solar system at 500-day steps switches to Newton at once.
+    const hamiltonians::outer_solar_system sun{};
+    check_resumes(sun, 2, gauss_options{}, sun.initial_state(), 500.0, true);
+}
+
+TEST_CASE("gauss_collocation: a carried list of the wrong length or size is refused by name") {
+    auto g = make_gauss_collocation<State>(pendulum2, 2);
+    State x = pendulum2_start;
+    for (int i = 0; i < 3; ++i) g.step(x, 0.05);
+    std::vector<double> list = g.carried();
+    list.push_back(0);
+    CHECK_THROWS_WITH_AS(g.restore_carried(list), doctest::Contains("gauss_collocation_stepper"), invalid_argument);
+    CHECK_THROWS_WITH_AS(g.restore_carried(list), doctest::Contains("longer than"), invalid_argument);
+    list.resize(3);
+    CHECK_THROWS_WITH_AS(g.restore_carried(list), doctest::Contains("ends early"), invalid_argument);
+    // Another stepper's list: a stepper of 3 stages carries more stage values.
+    auto g3 = make_gauss_collocation<State>(pendulum2, 3);
+    State y = pendulum2_start;
+    g3.step(y, 0.05);
+    CHECK_THROWS_WITH_AS(g.restore_carried(g3.carried()), doctest::Contains("another size"), invalid_argument);
+}
+
 }  // namespace test_methods_test_gauss_collocation

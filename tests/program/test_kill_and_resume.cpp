@@ -166,11 +166,19 @@ TEST_CASE("kill and resume: Boost.Odeint's rk4 and its controlled steppers, with
     }
 }
 
-TEST_CASE("kill and resume: tao(<table>) with its second copy, semiexplicit(<table>)") {
+TEST_CASE("kill and resume: tao(<table>) with its second copy, semiexplicit(<table>), Gauss with its stages") {
     const std::string charged = "system = \"charged_particle\"\n";
-    for (const std::string method : {"tao(yoshida_4)", "semiexplicit(yoshida_4)"}) {
+    for (const std::string method : {"tao(yoshida_4)", "semiexplicit(yoshida_4)", "gauss_6"}) {
         CAPTURE(method);
         check_byte_identical(kill_and_resume("general", charged, method, "t_end = 40\ndt = 0.005\n", 400, 20));
+    }
+}
+
+TEST_CASE("kill and resume: a charged particle's pushers and splittings (nothing carried beyond q, p)") {
+    const std::string uniform = "system = \"charged_uniform\"\n";
+    for (const std::string method : {"boris", "boris(relativistic = true)", "cartesian_split(yoshida_6)"}) {
+        CAPTURE(method);
+        check_byte_identical(kill_and_resume("charged", uniform, method, "t_end = 100\ndt = 0.005\n", 1000, 50));
     }
 }
 

@@ -33,8 +33,8 @@ public:
     void resize(Eigen::Index n, int stages) {
         n_ = n;
         stages_ = stages;
-        jacobian_.resize(2 * n, 2 * n);
-        scale_.resize(2 * n);
+        jacobian_.setZero(2 * n, 2 * n);  // zeros only for write_carried before any Jacobian
+        scale_.setZero(2 * n);
         lu_.resize(2 * n * stages);
         q_.resize(n);
         p_.resize(n);
@@ -93,16 +93,8 @@ public:
     // Factors D^-1 (I - h (A (x) J)) D; returns the index of a zero or non-finite pivot, or -1.
     template <class Tableau>
     Eigen::Index factor(const Tableau& a, Real h) {
-        const Eigen::Index m = 2 * n_;
-        for (int i = 0; i < stages_; ++i)
-            for (int j = 0; j < stages_; ++j)
-                lu_.matrix.block(i * m, j * m, m, m) = (-h * Real(a[i][j])) * jacobian_;
-        lu_.matrix.diagonal().array() += Real(1);
         ++factorizations_;
-        const Eigen::Index bad = lu_.factor();
-        factored_ = bad < 0;
-        h_ = h;
-        return bad;
+        return build_and_factor(a, h);
     }
     Real pivot(Eigen::Index k) const { return lu_.matrix(k, k); }
     // D^-1 J D of the last jacobian_at (J's eigenvalues; D: the components' scales).
@@ -118,7 +110,50 @@ public:
         for (Eigen::Index k = 0; k < v.size(); ++k) v[k] = v[k] * scale_[k % m];
     }
 
+    // What the next step reads (a checkpoint): the Jacobian, its scales, the
+    // step size factored for; the factors themselves are rebuilt on reading,
+    // the same arithmetic on the same numbers, so bit for bit (counters not carried).
+    template <class Writer>
+    void write_carried(Writer& w) const {
+        w.flag(have_jacobian_);
+        w.flag(factored_);
+        w.number(h_);
+        w.numbers(jacobian_);
+        w.numbers(scale_);
+    }
+    // Reads what write_carried wrote, after resize(n, stages); a the tableau's A.
+    template <class Reader, class Tableau>
+    void read_carried(Reader& r, const Tableau& a) {
+        const bool have = r.flag(), factored = r.flag();
+        const Real h = r.number();
+        Eigen::Matrix<Real, Eigen::Dynamic, 1> jacobian, scale;
+        r.numbers(jacobian);
+        r.numbers(scale);
+        const Eigen::Index m = 2 * n_;
+        if (jacobian.size() != m * m || scale.size() != m || (factored && !have))
+            r.refuse("holds a Newton Jacobian of another size than the state's");
+        jacobian_ = Eigen::Map<const Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic>>(jacobian.data(), m, m);
+        scale_ = scale;
+        have_jacobian_ = have;
+        factored_ = false;
+        h_ = h;
+        if (factored && build_and_factor(a, h) >= 0) r.refuse("holds a Newton Jacobian whose matrix is singular");
+    }
+
 private:
+    template <class Tableau>
+    Eigen::Index build_and_factor(const Tableau& a, Real h) {
+        const Eigen::Index m = 2 * n_;
+        for (int i = 0; i < stages_; ++i)
+            for (int j = 0; j < stages_; ++j)
+                lu_.matrix.block(i * m, j * m, m, m) = (-h * Real(a[i][j])) * jacobian_;
+        lu_.matrix.diagonal().array() += Real(1);
+        const Eigen::Index bad = lu_.factor();
+        factored_ = bad < 0;
+        h_ = h;
+        return bad;
+    }
+
     Eigen::Index n_ = 0;
     int stages_ = 0;
     Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic> jacobian_;  // D^-1 J D

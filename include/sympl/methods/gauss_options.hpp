@@ -2,13 +2,19 @@
 // What the Gauss-Legendre stepper (gauss_collocation.hpp) is told and what it
 // iterates on: its options (iteration, tolerances, compensated update), the
 // constants of its stopping rule and iteration choice, a separable H seen as
-// a general one, and the magnitudes of (dual) numbers its convergence test
-// reads. The rules and their reasons: docs/nonseparable.md.
+// a general one, the options' check, and the componentwise measure of a
+// correction its convergence test reads (on dual numbers too).
+// The rules and their reasons: docs/nonseparable.md.
+#include <cmath>
 #include <optional>
+#include <string>
 #include <type_traits>
 #include <utility>
 
+#include <Eigen/Core>
+
 #include "../core/dual.hpp"
+#include "../core/error.hpp"
 #include "../core/general_hamiltonian.hpp"
 #include "../core/hamiltonian.hpp"
 
@@ -89,6 +95,49 @@ auto magnitude(const X& x) {
 }
 template <class X>
 using real_of = decltype(primal(std::declval<X>()));
+
+// The options checked (named in the error as the stepper's) and the relative
+// tolerance they ask: theirs, or `eps` (one machine epsilon of the state's scalar).
+inline double checked_relative_tolerance(const gauss_options& o, double eps) {
+    using std::isfinite;
+    const double rtol = o.tolerance ? *o.tolerance : eps;
+    if (!isfinite(rtol) || !(rtol > 0))
+        throw invalid_argument("gauss_collocation_stepper: tolerance = " + number_text(rtol) +
+                               "; expected a finite tolerance > 0");
+    if (o.absolute_tolerance && (!isfinite(*o.absolute_tolerance) || *o.absolute_tolerance < 0))
+        throw invalid_argument("gauss_collocation_stepper: absolute_tolerance = " + number_text(*o.absolute_tolerance) +
+                               "; expected a finite tolerance >= 0 (or none: rtol times the largest component)");
+    if (o.max_iterations < 1)
+        throw invalid_argument("gauss_collocation_stepper: max_iterations = " + std::to_string(o.max_iterations) +
+                               "; expected at least 1");
+    return rtol;
+}
+
+// The convergence test's measure: max over stages i and components k of
+// |dZ_ik| / (atol + rtol y_k), y_k the largest |component k| of y0 and the
+// stages y0 + Z_i (kept in ymax), in units of rtol; a NaN kept. No atol:
+// rtol times the largest y_k of the component's half (q or p) instead.
+template <class State, class Stages, class RealColumn, class Real>
+Real scaled_correction(const State& x, const Stages& z, const Stages& dz, RealColumn& ymax, Real rtol,
+                       const std::optional<double>& atol) {
+    const Eigen::Index s = z.cols(), n = x.q.size();
+    Real block[2] = {0, 0};
+    for (Eigen::Index k = 0; k < 2 * n; ++k) {
+        const auto& y0 = k < n ? x.q[k] : x.p[k - n];
+        Real y = Real(magnitude(y0));
+        for (Eigen::Index i = 0; i < s; ++i) y = nan_max(y, Real(magnitude(y0 + z(k, i))));
+        ymax[k] = y;
+        block[k >= n] = nan_max(block[k >= n], y);
+    }
+    Real worst = 0;
+    for (Eigen::Index k = 0; k < 2 * n; ++k) {
+        const Real scale = atol ? Real(*atol) + rtol * ymax[k] : rtol * (ymax[k] + block[k >= n]);
+        Real v = 0;
+        for (Eigen::Index i = 0; i < s; ++i) v = nan_max(v, Real(magnitude(dz(k, i))));
+        worst = nan_max(worst, scale > 0 ? v / scale : (v == 0 ? Real(0) : v / scale));
+    }
+    return worst;
+}
 
 }  // namespace detail
 
