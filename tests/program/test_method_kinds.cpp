@@ -236,7 +236,7 @@ TEST_CASE("method kinds: Gauss-Legendre, tao(<table>), semiexplicit(<table>) and
     for (const char* name : {"gauss_2", "gauss_4", "gauss_6"}) {
         CHECK(resolve_method(name, {}));
         CHECK(requirement_of(*resolve_method(name, {})) == needs::general_hamiltonian);
-        CHECK(why_not_resumable(*resolve_method(name, {})).find("stage values") != std::string::npos);
+        CHECK(why_not_resumable(*resolve_method(name, {})).empty());  // the stage values ride in the carried list
     }
     const auto tao = resolve_method("tao(yoshida_6)", {});
     REQUIRE(tao);
@@ -258,7 +258,7 @@ TEST_CASE("method kinds: Gauss-Legendre, tao(<table>), semiexplicit(<table>) and
     CHECK_THROWS_WITH_AS(resolve_method("tao(chin_4a)", {}), doctest::Contains("force-gradient"), sympl::invalid_argument);
     for (const char* name : {"dprkn6", "dprkn8", "dprkn12"}) {
         CHECK_FALSE(adaptive(*resolve_method(name, {})));
-        CHECK(why_not_resumable(*resolve_method(name, {})).find("stage values") != std::string::npos);
+        CHECK(why_not_resumable(*resolve_method(name, {})).empty());
         const auto controlled = resolve_method(std::string(name) + "_controlled", {});
         REQUIRE(controlled);
         CHECK(adaptive(*controlled));
