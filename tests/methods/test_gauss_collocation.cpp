@@ -98,7 +98,7 @@ TEST_CASE("gauss_collocation: the tableaus satisfy B(2s), C(s) and the symplecti
     // collocation conditions C(s): sum_j a_ij c_j^(k-1) = c_i^k / k (GNI sec. II.1.3);
     // symplectic: b_i a_ij + b_j a_ji = b_i b_j (GNI Thm. VI.4.3); d^T A = b^T (GNI sec. VIII.6).
     const long double tol = 16 * std::numeric_limits<long double>::epsilon();
-    for (int s = 1; s <= 3; ++s) {
+    for (int s = 1; s <= max_gauss_stages; ++s) {
         CAPTURE(s);
         const gauss_tableau t = gauss_legendre_tableau(s);
         CHECK(t.order == 2 * s);
@@ -123,7 +123,8 @@ TEST_CASE("gauss_collocation: the tableaus satisfy B(2s), C(s) and the symplecti
             CHECK(std::fabs(v - t.b[j]) <= tol);
         }
     }
-    CHECK_THROWS_AS(gauss_legendre_tableau(4), invalid_argument);
+    CHECK_THROWS_AS(gauss_legendre_tableau(0), invalid_argument);
+    CHECK_THROWS_AS(gauss_legendre_tableau(max_gauss_stages + 1), invalid_argument);
 }
 
 TEST_CASE("gauss_collocation: each analytic gradient equals the dual-number gradient of its energy") {
