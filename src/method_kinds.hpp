@@ -91,6 +91,9 @@ inline constexpr std::array gauss_members{
                  "any H(q, p), separable or not"},
     named_method{"gauss_4", {.stages = 2}, "implicit Gauss-Legendre collocation, s = 2, order 4, any H(q, p)"},
     named_method{"gauss_6", {.stages = 3}, "implicit Gauss-Legendre collocation, s = 3, order 6, any H(q, p)"},
+    named_method{"gauss_8", {.stages = 4}, "implicit Gauss-Legendre collocation, s = 4, order 8, any H(q, p)"},
+    named_method{"gauss_10", {.stages = 5}, "implicit Gauss-Legendre collocation, s = 5, order 10, any H(q, p)"},
+    named_method{"gauss_12", {.stages = 6}, "implicit Gauss-Legendre collocation, s = 6, order 12, any H(q, p)"},
 };
 
 inline constexpr std::array dprkn_members{
