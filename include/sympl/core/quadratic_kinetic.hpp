@@ -40,6 +40,7 @@ public:
     template <class H>
     void recognise(const H& h, Eigen::Index n) {
         dimension_ = n;
+        uniform_ = false;
         form_ = has_analytic_velocity<H, Vec> ? form::analytic : form::not_quadratic;
         if constexpr (!has_analytic_velocity<H, Vec> && std::is_floating_point_v<scalar>) {
             try {
@@ -56,8 +57,13 @@ public:
 
     // v = M^-1 p where T was recognised as quadratic (applies() is true).
     [[gnu::always_inline]] inline void velocity(const Vec& p, Vec& v) const {
-        if (form_ == form::diagonal) v.noalias() = diagonal_.cwiseProduct(p);
-        else v.noalias() = dense_ * p;
+        if (form_ == form::diagonal) {
+            // Equal masses (every particle of a chain or a cluster): one stream, p, not two.
+            if (uniform_) v.noalias() = diagonal_[0] * p;
+            else v.noalias() = diagonal_.cwiseProduct(p);
+        } else {
+            v.noalias() = dense_ * p;
+        }
     }
     // The inverse mass matrix found: its diagonal, or the whole matrix.
     const Vec& inverse_mass_diagonal() const { return diagonal_; }
@@ -73,7 +79,11 @@ private:
         sympl::velocity(h, zero, v0);
         if (!homogeneous(h, p1, v1) || !homogeneous(h, p2, v2) || !close(v0, zero, v1)) return form::not_quadratic;
         diagonal_ = v1.cwiseQuotient(p1);
-        if (close(diagonal_.cwiseProduct(p2), v2, v2)) return form::diagonal;
+        if (close(diagonal_.cwiseProduct(p2), v2, v2)) {
+            // Uniform only when c p reproduces both probes as the diagonal does.
+            uniform_ = close(diagonal_[0] * p1, v1, v1) && close(diagonal_[0] * p2, v2, v2);
+            return form::diagonal;
+        }
         if (n > dense_limit) return form::not_quadratic;
         dense_.resize(n, n);
         Vec e = Vec::Zero(n), column;
@@ -112,6 +122,7 @@ private:
     }
 
     Vec diagonal_;
+    bool uniform_ = false;  // the diagonal is one number (equal masses)
     matrix dense_;
     Eigen::Index dimension_ = -1;
     form form_ = form::unknown;

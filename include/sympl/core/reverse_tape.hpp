@@ -8,21 +8,29 @@
 // operations of one statement are independent of each other, so the sweep's
 // chain of dependent memory updates is one per statement, not one per +, *.
 //
+// One array of 16-byte records, written forwards and swept backwards, so
+// that both passes stream through memory: a statement is its operations
+// (multiplier, node) followed by its own record (adjoint, number of
+// operations), and its node is that record's position. The adjoint is
+// zeroed as the statement is written, where the record is in cache anyway,
+// not by a pass of its own. One capacity check per statement.
 // One tape per thread and scalar type, reused: no allocation once warm.
 #include <algorithm>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "error.hpp"
 
 namespace sympl::detail {
 
-// d(statement)/d(node) = multiplier.
+// An operation: d(statement)/d(node) = value, at `index` = node.
+// A statement's own record: its adjoint in `value`, its operation count in `index`.
 template <class T>
-struct tape_operation {
-    T multiplier;
-    std::int32_t node;
+struct tape_record {
+    T value;
+    std::int32_t index;
 };
 
 template <class T>
@@ -39,21 +47,21 @@ public:
         return tape;
     }
 
-    // Starts a recording with n independent variables: statements 1..n, with no
-    // operations. Statement 0 stands for every constant and is never swept.
+    // Starts a recording with n independent variables: the records 1..n, with
+    // no operations. Node 0 stands for every constant and is never written.
     void begin(std::size_t n, const char* who) {
         if (active() != nullptr)
             throw invalid_argument(std::string(who) +
                                    ": a reverse-mode gradient was asked for inside another of the same scalar type; "
                                    "expected one at a time per thread");
-        if (n + 2 > std::size_t(INT32_MAX))
+        if (n + 2 > std::size_t(INT32_MAX) / 2)
             throw invalid_argument(std::string(who) + ": " + std::to_string(n) +
-                                   " independent variables; expected fewer than 2^31");
-        if (first_.size() < n + 2) first_.resize(std::max<std::size_t>(1024, 2 * (n + 2)));
-        first_[n + 1] = 0;  // where the first statement's operations start; inputs have none, never read
+                                   " independent variables; expected fewer than 2^30");
         inputs_ = n;
-        statements_ = n + 1;
-        operations_ = 0;
+        end_ = 0;
+        reserve(n + 1);
+        for (std::size_t i = 0; i <= n; ++i) records_[i] = {T(0), 0};
+        end_ = n + 1;
         active() = this;
     }
 
@@ -63,72 +71,77 @@ public:
     // within a statement (r * r) is one operation: one update of its adjoint
     // instead of two that would wait on each other.
     struct writer {
-        tape_operation<T>* cursor;
-        tape_operation<T>* start;
+        tape_record<T>* cursor;
+        tape_record<T>* start;
         std::int32_t last = 0;
         void emit(std::int32_t node, T multiplier) {
             if (node == last) {
-                cursor[-1].multiplier += multiplier;
+                cursor[-1].value += multiplier;
                 return;
             }
             *cursor++ = {multiplier, node};
             last = node;
         }
     };
-    // Room for a statement of at most `count` operations.
+    // Room for a statement of at most `count` operations and its own record.
     writer open_statement(std::size_t count) {
-        if (operations_ + count > ops_.size()) [[unlikely]]
-            grow(operations_ + count);
-        tape_operation<T>* at = ops_.data() + operations_;
+        if (end_ + count + 1 > capacity_) [[unlikely]]
+            reserve(end_ + count + 1);
+        tape_record<T>* at = data_ + end_;
         return {at, at};
     }
     // Ends the statement `w` wrote; 0 when it has no operations (a value that
     // depends on no variable is a constant).
     std::int32_t close_statement(const writer& w) {
-        if (w.cursor == w.start) return 0;
-        if (statements_ + 2 > first_.size()) [[unlikely]]
-            grow_statements();
-        operations_ += std::size_t(w.cursor - w.start);
-        first_[statements_ + 1] = std::int32_t(operations_);
-        return std::int32_t(statements_++);
+        const auto count = std::int32_t(w.cursor - w.start);
+        if (count == 0) return 0;
+        *w.cursor = {T(0), count};
+        end_ = std::size_t(w.cursor - data_) + 1;
+        return std::int32_t(end_ - 1);
     }
 
     // Sweeps backwards from `output`, whose adjoint is `seed`, and ends the recording; the adjoint of
     // input i (0-based) is then input_adjoint(i).
     void sweep(std::int32_t output, T seed = T(1)) {
         active() = nullptr;
-        adjoints_.assign(statements_, T(0));
-        if (output > 0) adjoints_[std::size_t(output)] = seed;
-        T* adj = adjoints_.data();
-        const tape_operation<T>* op = ops_.data();
-        const std::int32_t* first = first_.data();
-        for (std::size_t s = statements_; s-- > inputs_ + 1;) {
-            const T g = adj[s];
-            for (std::int32_t k = first[s]; k < first[s + 1]; ++k) adj[op[k].node] += op[k].multiplier * g;
+        tape_record<T>* r = data_;
+        if (output > 0) r[output].value = seed;
+        for (std::size_t at = end_; at > inputs_ + 1;) {
+            const tape_record<T> own = r[--at];
+            const std::size_t first = at - std::size_t(own.index);
+            for (std::size_t k = first; k < at; ++k) r[r[k].index].value += r[k].value * own.value;
+            at = first;
         }
     }
     void abandon() { active() = nullptr; }
-    const T& input_adjoint(std::size_t i) const { return adjoints_[i + 1]; }
-    std::size_t statements() const { return statements_; }
-    std::size_t operations() const { return operations_; }
+    const T& input_adjoint(std::size_t i) const { return data_[i + 1].value; }
+    // Statements of the last recording (the constants' node, the inputs and
+    // each one recorded) and operations: for tests, by a walk of the tape.
+    std::size_t statements() const { return inputs_ + 1 + recorded().first; }
+    std::size_t operations() const { return recorded().second; }
 
 private:
-    void grow(std::size_t needed) {
+    std::pair<std::size_t, std::size_t> recorded() const {
+        std::size_t statements = 0, operations = 0;
+        for (std::size_t at = end_; at > inputs_ + 1; at -= std::size_t(data_[at - 1].index) + 1) {
+            ++statements;
+            operations += std::size_t(data_[at - 1].index);
+        }
+        return {statements, operations};
+    }
+    void reserve(std::size_t needed) {
         if (needed >= std::size_t(INT32_MAX) / 2)
             throw invalid_argument("reverse mode: one evaluation recorded more than 2^30 operations; expected fewer "
                                    "(give the Hamiltonian an analytic force)");
-        ops_.resize(std::max<std::size_t>({4096, 2 * ops_.size(), needed}));
-    }
-    void grow_statements() {
-        if (first_.size() >= std::size_t(INT32_MAX) / 2)
-            throw invalid_argument("reverse mode: one evaluation recorded more than 2^30 statements; expected fewer");
-        first_.resize(2 * first_.size());
+        if (needed <= records_.size()) return;
+        records_.resize(std::max<std::size_t>({4096, 2 * records_.size(), needed}));
+        data_ = records_.data();
+        capacity_ = records_.size();
     }
 
-    std::vector<std::int32_t> first_;  // statement s's operations are [first_[s], first_[s + 1])
-    std::vector<tape_operation<T>> ops_;
-    std::vector<T> adjoints_;
-    std::size_t inputs_ = 0, statements_ = 0, operations_ = 0;
+    std::vector<tape_record<T>> records_;
+    tape_record<T>* data_ = nullptr;
+    std::size_t inputs_ = 0, end_ = 0, capacity_ = 0;
 };
 
 }  // namespace sympl::detail
