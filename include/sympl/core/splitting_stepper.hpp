@@ -57,20 +57,12 @@ public:
     // is joined, and on small fixed-size states of kick-first tables (which
     // join across calls); otherwise they differ by rounding.
     [[gnu::always_inline]] inline void steps(State& x, scalar dt, std::size_t n) {
+        check_step(dt);
         const int kept = kept_force_matches(x);
         if constexpr (State::dimension != Eigen::Dynamic) {
-            // A loop of step() on a small state; dt is the one the last run
-            // checked and took (a NaN equals nothing), so it is not checked again.
-            if (n == 1 && kept == 2 && dt == loop_.p_before_dt) {
+            if (n == 1 && kept == 2 && dt == loop_.p_before_dt) {  // a loop of step() on a small state
                 loop_.joined_step(x, dt);
                 keep_force(x);
-                return;
-            }
-        }
-        check_step(dt);
-        if constexpr (State::dimension == Eigen::Dynamic && caches) {
-            if (n == 1 && kept == 1 && steps_from_kept_force(x)) {  // a loop of step() on a large state
-                kept_ = step_from_kept_force(x, dt);
                 return;
             }
         }
@@ -200,79 +192,6 @@ private:
         }
     }
 
-    // Whether step_from_kept_force() takes a step of x: an uncompensated table
-    // that starts and ends with a kick, no force-gradient kick, velocity p itself.
-    bool steps_from_kept_force(const State& x) {
-        if constexpr (substep_updates::reference_velocity) {
-            loop_.velocity_is_p = &loop_.h.velocity(x.p) == &x.p;
-            return loop_.velocity_is_p && !loop_.options.compensated && loop_.gradient_ops.empty() &&
-                   loop_.weights.size() >= 3 && loop_.first_is_kick && loop_.last_is_kick;
-        } else {
-            return false;
-        }
-    }
-
-    // One step of a large state handed back as the last call returned it (the
-    // kept force is F(x.q)): the sub-steps and operations of run(x, dt, 1,
-    // true, false), element by element the same, in fewer passes over memory.
-    // The copy of the final q and its finiteness are taken in the last drift's
-    // pass, not in a pass of their own; the passes walk the state in blocks
-    // from its end to its start, so each starts on what the pass before it
-    // (the check, the user's force: both forward) left in cache. Returns
-    // whether the final q is finite. Passes and bytes: docs/speed.md.
-    bool step_from_kept_force(State& x, scalar dt) {
-        auto& l = loop_;
-        const std::size_t L = l.weights.size();
-        bits not_finite = 0;
-        for (std::size_t s = 0; s + 1 < L; s += 2) {
-            if (s > 0) sympl::force(l.h, x.q, l.force);
-            const scalar hk = l.weights[s] * dt, hd = l.weights[s + 1] * dt;
-            scalar* const keep = s + 3 == L ? kept_q_.data() : nullptr;  // the last drift's pass keeps q
-            backward_blocks(x.q.size(), [&](Eigen::Index b, Eigen::Index e) {
-                not_finite |= keep ? kick_and_drift<true>(x.p.data(), x.q.data(), l.force.data(), keep, b, e, hk, hd)
-                                   : kick_and_drift<false>(x.p.data(), x.q.data(), l.force.data(), keep, b, e, hk, hd);
-            });
-        }
-        sympl::force(l.h, x.q, l.force);
-        const scalar hk = l.weights[L - 1] * dt;
-        backward_blocks(x.q.size(), [&](Eigen::Index b, Eigen::Index e) {  // kick()'s Eigen expression, by segments
-            x.p.segment(b, e - b) += hk * l.force.segment(b, e - b);
-        });
-        l.forces_counted += l.kicks - 1;
-        l.velocities_counted += l.drifts;
-        l.force_fresh = true;
-        l.velocity_fresh = l.p_before_valid = false;
-        return not_finite == 0;
-    }
-
-    // Elements [b, e) of substep_updates::kick_and_drift's fused pass; Keep:
-    // with keep_force's copy of q into k. Returns the non-finite bits of q.
-    template <bool Keep>
-    [[gnu::always_inline]] static inline bits kick_and_drift(scalar* __restrict p, scalar* __restrict q,
-                                                             const scalar* __restrict f, scalar* __restrict k,
-                                                             Eigen::Index b, Eigen::Index e, scalar hk, scalar hd) {
-        bits not_finite = 0;
-        for (Eigen::Index i = b; i < e; ++i) {
-            p[i] += hk * f[i];
-            q[i] += hd * p[i];
-            if constexpr (Keep) {
-                k[i] = q[i];
-                not_finite |= (std::bit_cast<bits>(q[i]) & exponent) == exponent;
-            }
-        }
-        return not_finite;
-    }
-
-    // body(begin, end) over blocks of [0, n) of 512 elements, the last block first.
-    template <class Body>
-    [[gnu::always_inline]] static inline void backward_blocks(Eigen::Index n, const Body& body) {
-        for (Eigen::Index end = n; end > 0;) {
-            const Eigen::Index begin = end > 512 ? end - 512 : 0;
-            body(begin, end);
-            end = begin;
-        }
-    }
-
     // After a run that ends with a fresh force, the q it belongs to, copied if
     // finite (a non-finite q is refused by the next call's full check).
     [[gnu::always_inline]] inline void keep_force(const State& x) {
@@ -291,7 +210,6 @@ private:
         }
     }
 
-    using substep_updates = detail::substep_updates<H, State>;
     detail::splitting_loop<H, State> loop_;
     vector kept_q_;      // the q at which loop_.force was evaluated, when kept_
     vector kept_p_;      // the p the last call returned (fixed-size states)
