@@ -1,6 +1,6 @@
 #pragma once
-// The implicit Gauss-Legendre collocation Runge-Kutta methods with s = 1, 2, 3
-// stages (orders 2s = 2, 4, 6; s = 1 is the implicit midpoint rule):
+// The implicit Gauss-Legendre collocation Runge-Kutta methods with s = 1 .. 6
+// stages (orders 2s = 2 .. 12; s = 1 is the implicit midpoint rule):
 // symplectic for any H(q, p), separable or not, and symmetric (Butcher 1964;
 // Hairer, Lubich & Wanner, Geometric Numerical Integration, 2nd ed. 2006,
 // sec. II.1.3, Thm. VI.4.3). One step solves the stage equations
