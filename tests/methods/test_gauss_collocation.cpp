@@ -373,7 +373,7 @@ TEST_CASE("gauss_collocation: bad input and a solve that does not converge name 
     CHECK(message(std::numeric_limits<double>::infinity()).find("dt = inf") != std::string::npos);
     CHECK(message(0.0).find("dt = 0;") != std::string::npos);
     CHECK(max_difference(x, pendulum2_start) == 0);
-    CHECK_THROWS_AS(make_gauss_collocation<State>(pendulum2, 4), invalid_argument);
+    CHECK_THROWS_AS(make_gauss_collocation<State>(pendulum2, 7), invalid_argument);  // 1 .. 6 stages
     gauss_options bad;
     bad.tolerance = -1;
     CHECK_THROWS_AS(make_gauss_collocation<State>(pendulum2, 2, bad), invalid_argument);

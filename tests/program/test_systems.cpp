@@ -32,9 +32,9 @@ std::vector<method_spec> every_method() {
 
 TEST_CASE("systems: every system runs every method the registry says it can, and refuses every other") {
     const auto methods = every_method();
-    // 10 classic names, 4 Odeint kinds, 3 Gauss-Legendre, 6 RKN pairs, 2 charged pushers, the force-gradient
+    // 10 classic names, 4 Odeint kinds, 6 Gauss-Legendre, 6 RKN pairs, 2 charged pushers, the force-gradient
     // tables and processed methods, a catalog and an inline table, a logh, two extrapolated, a tao and a semiexplicit
-    CHECK(methods.size() == 32 + sympl::force_gradient_catalog().size() + sympl::processed_catalog().size());
+    CHECK(methods.size() == 35 + sympl::force_gradient_catalog().size() + sympl::processed_catalog().size());
     for (const system_entry& entry : systems()) {
         const problem p = make_problem(entry.name, {}, {}, {}, "test");
         for (const method_spec& m : methods) {
