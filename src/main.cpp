@@ -3,7 +3,7 @@
 //   sympl systems [--json]           every system, its parameters and the method kinds
 //   sympl check-table --kick ... --drift ... [--convention ...] [--json]
 //   sympl run SCENE.toml [--json]    one scene: summary and the outputs it asks for
-//   sympl report [SCENE.toml ...] [--out DIR] [--quick]   the work-precision study
+//   sympl report [SCENE.toml ...] [--out DIR] [--quick] [--threads N]   the work-precision study
 //   sympl ensemble SCENE.toml [--out DIR] [--threads N]   a scene's [ensemble]
 // Invalid input: exit code 2 and one line on stderr.
 #include <algorithm>
@@ -81,6 +81,9 @@ void add_runs(CLI::App& app, command_line& c) {
     c.report->add_flag("--quick", c.report_settings.quick, "short runs: under a minute on 2 cores");
     c.report->add_flag("--no-plots", [&c](std::int64_t) { c.report_settings.plots = false; }, "skip the gnuplot PNGs");
     add_max_steps(c.report, c.report_settings.max_steps);
+    c.report->add_option("--threads", c.report_settings.threads,
+                         "runs side by side, one per thread (default: OMP_NUM_THREADS, else every core)")
+        ->check(CLI::Range(1, 1024));
 
     c.ensemble = app.add_subcommand("ensemble", "Run a scene's [ensemble] (grid or CSV of states): threads, MPI ranks");
     c.ensemble->add_option("scene", c.scene_file, "scene file (TOML) with an [ensemble] table")->required();

@@ -4,17 +4,20 @@
 #include <chrono>
 #include <fstream>
 #include <functional>
+#include <future>
 #include <iomanip>
 #include <sstream>
 
 #include "format.hpp"
+#include "systems.hpp"
 #include "writers.hpp"
 
 namespace sympl::app {
 
 namespace fs = std::filesystem;
 
-reference_state make_reference(const scene& s, const problem& p, const run_plan& plan, const fs::path& cache) {
+reference_state make_reference(const scene& s, const problem& p, const run_plan& plan, const fs::path& cache,
+                               bool side_by_side) {
     if (p.exact) return {p.exact(s.t_end - s.t0), 0.0, "exact", {}};
     const double dt = plan.reference_dt, finest_dt = plan.finest_dt;
     const std::string kind = p.reference_method + ", dt = " + format_number(dt);
@@ -38,8 +41,15 @@ reference_state make_reference(const scene& s, const problem& p, const run_plan&
     }
     std::vector<double> coarse, fine;
     try {
-        coarse = p.reference(s.t0, s.t_end, 2 * dt, p.x0);
+        // The coarse run on a thread of its own, with a problem of its own
+        // (the runs share no system object), while this one runs the fine.
+        std::future<std::vector<double>> coarse_run = std::async(
+            side_by_side ? std::launch::async : std::launch::deferred, [&s, dt, x0 = p.x0] {
+                const problem own = make_problem(s.system, s.parameters, s.q0, s.p0, s.source);
+                return own.reference(s.t0, s.t_end, 2 * dt, x0);
+            });
         fine = p.reference(s.t0, s.t_end, dt, p.x0);
+        coarse = coarse_run.get();
     } catch (const integration_error& e) {
         return {{}, -1, kind, "the reference (" + kind + ", a quarter of the finest step " + format_number(finest_dt) +
                                   ", and twice that) failed: " + e.what()};

@@ -25,9 +25,10 @@ struct reference_state {
 
 // At the plan's reference step (a quarter of the finest step its runs take).
 // With `cache` not empty, a reference is stored there under a key of
-// everything it depends on.
+// everything it depends on. side_by_side: its two runs (the step and twice
+// it) on two threads.
 reference_state make_reference(const scene& s, const problem& p, const run_plan& plan,
-                               const std::filesystem::path& cache = {});
+                               const std::filesystem::path& cache = {}, bool side_by_side = false);
 
 // What the reference will cost before it starts: its steps (both runs) and
 // the seconds they take, extrapolated from a timed run of a few of its steps

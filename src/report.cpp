@@ -3,8 +3,10 @@
 // Compute (report_rows), gather (MPI), write (report_write, summary.md).
 #include "report.hpp"
 
-#include <ostream>
 #include <algorithm>
+#include <chrono>
+#include <functional>
+#include <ostream>
 #include <set>
 #include <sstream>
 
@@ -14,6 +16,10 @@
 #include "report_write.hpp"
 #include "timing.hpp"
 #include "writers.hpp"
+
+#ifdef _OPENMP
+#include <omp.h>
+#endif
 
 namespace sympl::app {
 
@@ -36,6 +42,37 @@ void check_scenes(const std::vector<scene>& scenes, const report_options& option
     }
 }
 
+// A reference whose two runs (dt and 2 dt) disagree this much has followed
+// chaotic motion: nearby orbits separate, and a final error would measure the
+// Lyapunov exponent, not the method.
+constexpr double chaotic_reference = 1e-6;
+
+// The threads `threads` asks for (0: OpenMP's default).
+int threads_used(int threads) {
+#ifdef _OPENMP
+    return threads > 0 ? threads : omp_get_max_threads();
+#else
+    (void)threads;
+    return 1;
+#endif
+}
+
+// Wall time of the report's phases, each lap from the last.
+class phase_clock {
+public:
+    void lap(const std::string& name) {
+        const auto now = std::chrono::steady_clock::now();
+        text_ += (text_.empty() ? "" : ", ") + name + " " +
+                 format_number(std::chrono::duration<double>(now - last_).count(), 3) + " s";
+        last_ = now;
+    }
+    const std::string& text() const { return text_; }
+
+private:
+    std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+    std::string text_;
+};
+
 void write_intro(std::ostream& md, const report_options& options, int rounds, const exchange& ranks) {
     md << "# sympl work-precision report\n\n"
        << (options.quick ? "Quick run (`--quick`): spans of 1e3 characteristic periods (1e4 in the full report), "
@@ -50,6 +87,9 @@ void write_intro(std::ostream& md, const report_options& options, int rounds, co
        << (options.quick ? "1 ms" : "5 ms") << " until it has (min and max in work_precision.csv). Timer: "
        << "std::chrono::steady_clock, smallest step between two readings " << format_number(clock_resolution() * 1e9, 2)
        << " ns here.";
+    if (const int n = threads_used(options.threads); n > 1)
+        md << " " << n << " runs were timed side by side, one per thread (`--threads 1` times one at a time); on "
+           << "a machine with fewer free cores than threads they slow each other, evenly over the rounds.";
     if (ranks.size > 1)
         md << " The runs were dealt round-robin over " << ranks.size
            << " MPI ranks; each was timed on its rank while the other ranks timed theirs, so ranks sharing a node's "
@@ -57,11 +97,6 @@ void write_intro(std::ostream& md, const report_options& options, int rounds, co
               "count. Everything else is identical to a one-process report.";
     md << "\n\n";
 }
-
-// A reference whose two runs (dt and 2 dt) disagree this much has followed
-// chaotic motion: nearby orbits separate, and a final error would measure the
-// Lyapunov exponent, not the method.
-constexpr double chaotic_reference = 1e-6;
 
 // summary.md's list of files: what is in the directory, nothing else.
 void write_files(std::ostream& md, const fs::path& dir, bool plots_asked) {
@@ -81,7 +116,8 @@ void write_files(std::ostream& md, const fs::path& dir, bool plots_asked) {
 void write_report(const std::vector<scene>& scenes, const std::vector<run_plan>& plans,
                   const std::vector<report_row>& rows, const std::map<const scene*, reference_state>& references,
                   const std::vector<ensemble_outcome>& ensembles, const report_options& options, int rounds,
-                  const exchange& ranks, const fs::path& dir, const progress& bar, std::ostream& table) {
+                  const exchange& ranks, const fs::path& dir, const progress& bar, std::ostream& table,
+                  phase_clock& phases) {
     write_work_precision_csv(rows, references, dir);
     std::ostringstream md;
     write_intro(md, options, rounds, ranks);
@@ -111,6 +147,11 @@ void write_report(const std::vector<scene>& scenes, const std::vector<run_plan>&
         extreme_study(c);
         energy_long_span_study(c);
     }
+    phases.lap("tables, figures and studies");
+    const int threads = threads_used(options.threads);
+    md << "## Where the time went\n\nWall time of this report's phases on " << threads << " thread"
+       << (threads == 1 ? "" : "s") << ": " << phases.text() << ".\n\n";
+    table << "time: " << phases.text() << "\n";
     write_files(md, dir, options.plots);
     atomic_file summary(dir / "summary.md");
     summary.stream() << md.str();
@@ -134,21 +175,31 @@ void run_report(const std::vector<scene>& scenes, const report_options& options,
     const fs::path dir = writer ? outputs->staging() : fs::path();
     const progress bar{writer && isatty(STDERR_FILENO)};
     const int rounds = options.quick ? 3 : 5;
-    std::map<const scene*, reference_state> references;
-    if (writer)
-        for (std::size_t k = 0; k < scenes.size(); ++k) {
-            bar.show(counter(k + 1, scenes.size()) + scenes[k].name + ": reference");
-            reference_state& ref = references[&scenes[k]];
-            ref = make_reference(scenes[k], problems[k], plans[k], outputs->directory() / "cache");
-            if (ref.failure.empty() && ref.error > chaotic_reference)
-                ref.failure = "its two references (" + ref.kind + " and twice that step) differ by " +
-                              format_number(ref.error, 2) + ": over this span nearby orbits separate (chaotic motion), "
-                              "so a final error would measure the Lyapunov exponent, not the method. The energy "
-                              "error still measures the method.";
-        }
+    phase_clock phases;
+    // The references and the measured runs side by side on the threads (the
+    // measured runs do not need the references; the timing rounds do).
+    std::map<const scene*, reference_state> references;  // rank 0's
+    std::vector<std::function<void()>> reference_runs;
+    if (writer) {
+        for (const scene& s : scenes) references[&s];  // every key in place before the threads fill the values
+        const fs::path cache = outputs->directory() / "cache";
+        fs::create_directories(cache);
+        for (std::size_t k = 0; k < scenes.size(); ++k)
+            reference_runs.push_back([&, k, cache] {
+                reference_state& ref = references.at(&scenes[k]);
+                ref = make_reference(scenes[k], problems[k], plans[k], cache, threads_used(options.threads) > 1);
+                if (ref.failure.empty() && ref.error > chaotic_reference)
+                    ref.failure = "its two references (" + ref.kind + " and twice that step) differ by " +
+                                  format_number(ref.error, 2) + ": over this span nearby orbits separate (chaotic "
+                                  "motion), so a final error would measure the Lyapunov exponent, not the method. The "
+                                  "energy error still measures the method.";
+            });
+    }
     std::vector<report_row> rows = rows_of(plans, problems);
-    measure_rows(rows, mine, bar);
-    time_rows(rows, mine, rounds, options.quick ? 1e-3 : 5e-3, bar);  // each rank times its own rows
+    measure_rows(rows, mine, bar, options.threads, reference_runs);
+    phases.lap("references and measured runs");
+    time_rows(rows, mine, rounds, options.quick ? 1e-3 : 5e-3, bar, references, options.threads);  // each rank its own
+    phases.lap("timing rounds");
     gather_rows(rows, mine, ranks);
     // Scenes with an [ensemble] (the Henon-Heiles chaos map) run it too, over
     // this process's threads and the ranks.
@@ -159,10 +210,11 @@ void run_report(const std::vector<scene>& scenes, const report_options& options,
             ensembles.push_back(run_ensemble_scene(s, dir, file_name_part(s.name) + "_", 0, options.max_steps,
                                                    options.plots && have_gnuplot(), ranks));
         }
+    phases.lap("ensembles");
     if (!writer) return;
     finish_rows(rows, references);
     std::ostringstream table;
-    write_report(scenes, plans, rows, references, ensembles, options, rounds, ranks, dir, bar, table);
+    write_report(scenes, plans, rows, references, ensembles, options, rounds, ranks, dir, bar, table, phases);
     const bool drawn = options.plots && fs::exists(dir / "work_precision.png");
     outputs->commit();
     bar.done();

@@ -16,6 +16,9 @@ struct report_options {
     bool studies = true;   // stability map, Kepler e = 0.99, long run, extreme scales
     bool plots = true;     // PNGs with gnuplot when it is installed
     double max_steps = default_max_steps;  // per run, checked before anything runs
+    // Threads that make references, measure and time runs side by side, each
+    // run on one thread (0: OMP_NUM_THREADS, else every core).
+    int threads = 0;
 };
 
 // The study over `scenes`; writes into options.out_dir and prints a short

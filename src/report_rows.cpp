@@ -1,11 +1,15 @@
 // The report's rows: measured, timed, gathered, finished.
 #include "report_rows.hpp"
 
+#include <atomic>
 #include <charconv>
 
 #include "format.hpp"
 #include "loop_area.hpp"
+#include "systems.hpp"
 #include "timing.hpp"
+
+#include <sympl/parallel/ensemble.hpp>
 
 namespace sympl::app {
 
@@ -83,38 +87,75 @@ std::vector<report_row> rows_of(const std::vector<run_plan>& plans, const std::v
     return rows;
 }
 
-void measure_rows(std::vector<report_row>& rows, const row_filter& mine, const progress& bar) {
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-        if (!mine(i)) continue;
-        report_row& r = rows[i];
-        const scene& s = *r.s;
-        const std::string head =
-            counter(i + 1, rows.size()) + s.name + ": " + r.method().name + " " + format_number(r.run->setting());
-        bar.show(head);
-        run_request rq = r.run->request();
-        rq.energy = r.p->hamiltonian;
-        rq.timing_repeats = 0;
-        if (bar.tty)
-            rq.progress = [&](double t) {
-                bar.show(head + ", t = " + format_number(t, 6) + " of " + format_number(s.t_end, 6));
-            };
-        r.r = r.p->run(r.method(), rq, s.t0, s.t_end, r.p->x0);
-        if (r.r.stable && s.output.loop_area) r.loop_area_error = loop_area_error(*r.p, r.method(), rq, s.t0, s.t_end);
-    }
+namespace {
+
+// The rows this process runs that `keep` accepts, in order.
+template <class Keep>
+std::vector<std::size_t> rows_to_run(const std::vector<report_row>& rows, const row_filter& mine, const Keep& keep) {
+    std::vector<std::size_t> picked;
+    for (std::size_t i = 0; i < rows.size(); ++i)
+        if (mine(i) && keep(rows[i])) picked.push_back(i);
+    return picked;
 }
 
-void time_rows(std::vector<report_row>& rows, const row_filter& mine, int rounds, double least, const progress& bar) {
+// A problem of the row's own, made as the report made the scene's: runs on
+// different threads share no system object (a system may keep what it has
+// found out about its H between calls).
+problem own_problem(const report_row& r) { return make_problem(r.s->system, r.s->parameters, r.s->q0, r.s->p0, r.s->source); }
+
+}  // namespace
+
+void measure_rows(std::vector<report_row>& rows, const row_filter& mine, const progress& bar, int threads,
+                  const std::vector<std::function<void()>>& first) {
+    const std::vector<std::size_t> picked = rows_to_run(rows, mine, [](const report_row&) { return true; });
+    std::atomic<std::size_t> finished{0};
+    for_each_in_parallel(first.size() + picked.size(), threads, [&](std::size_t k) {
+        if (k < first.size()) {
+            first[k]();
+            bar.show("references " + counter(++finished, first.size() + picked.size()));
+            return;
+        }
+        report_row& r = rows[picked[k - first.size()]];
+        const problem p = own_problem(r);
+        run_request rq = r.run->request();
+        rq.energy = p.hamiltonian;
+        rq.timing_repeats = 0;
+        r.r = p.run(r.method(), rq, r.s->t0, r.s->t_end, p.x0);
+        if (r.r.stable && r.s->output.loop_area) r.loop_area_error = loop_area_error(p, r.method(), rq, r.s->t0, r.s->t_end);
+        bar.show("measured runs " + counter(++finished, first.size() + picked.size()) + r.s->name + ": " + r.method().name + " " +
+                 format_number(r.run->setting()));
+    });
+}
+
+namespace {
+
+// Both measures at order one (report_write.hpp): the energy error, and the
+// final error where it is measured here.
+bool no_solution(const report_row& r, const std::map<const scene*, reference_state>& references) {
+    if (!(r.r.max_energy_error >= order_one_error)) return false;  // also: no energy (-1)
+    if (r.p->exact) return relative_difference(r.r.final_state, r.p->exact(r.s->t_end - r.s->t0)) >= order_one_error;
+    const auto ref = references.find(r.s);
+    if (ref == references.end()) return false;  // another rank holds the reference: timed, to be safe
+    return !ref->second.failure.empty() || relative_difference(r.r.final_state, ref->second.x) >= order_one_error;
+}
+
+}  // namespace
+
+void time_rows(std::vector<report_row>& rows, const row_filter& mine, int rounds, double least, const progress& bar,
+               const std::map<const scene*, reference_state>& references, int threads) {
+    const std::vector<std::size_t> picked =
+        rows_to_run(rows, mine, [&](const report_row& r) { return r.r.stable && !no_solution(r, references); });
     for (int round = 0; round < rounds; ++round) {
         bar.show("timing, round " + std::to_string(round + 1) + " of " + std::to_string(rounds));
-        for (std::size_t i = 0; i < rows.size(); ++i) {
-            report_row& r = rows[i];
-            if (!mine(i) || !r.r.stable) continue;
+        for_each_in_parallel(picked.size(), threads, [&](std::size_t k) {
+            report_row& r = rows[picked[k]];
+            const problem p = own_problem(r);
             run_request rq = r.run->request();
             rq.observed = false;
             rq.timing_repeats = 1;
             rq.min_measurement = least;
-            r.times.push_back(r.p->run(r.method(), rq, r.s->t0, r.s->t_end, r.p->x0).seconds);
-        }
+            r.times.push_back(p.run(r.method(), rq, r.s->t0, r.s->t_end, p.x0).seconds);
+        });
     }
 }
 

@@ -33,12 +33,23 @@ std::vector<report_row> rows_of(const std::vector<run_plan>& plans, const std::v
 // Which rows this process runs (under MPI: round-robin over the ranks).
 using row_filter = std::function<bool(std::size_t)>;
 
-// The measured runs: energy, final state, blow-up, loop area where asked.
-void measure_rows(std::vector<report_row>& rows, const row_filter& mine, const progress& bar);
+// The measured runs: energy, final state, blow-up, loop area where asked;
+// `threads` runs side by side (0: OpenMP's default), each with a problem of
+// its own, so that the rows' numbers are the same for any thread count.
+// The tasks `first` (the references) share the threads, started before the rows.
+void measure_rows(std::vector<report_row>& rows, const row_filter& mine, const progress& bar, int threads,
+                  const std::vector<std::function<void()>>& first = {});
 
 // `rounds` timing rounds over every stable run, interleaved between methods,
-// so a slow spell of a shared machine falls on all of them.
-void time_rows(std::vector<report_row>& rows, const row_filter& mine, int rounds, double least, const progress& bar);
+// so a slow spell of a shared machine falls on all of them. A run whose
+// errors reached order one is no solution at any level (left out of every
+// table and figure), so it is not timed: at Kepler e = 0.99 the fixed-step
+// runs are such runs, and timing them was a large part of the report's time.
+// Its final error is judged against the exact solution or, on the process
+// that has it, the reference; without either it is timed. Each round runs
+// `threads` timed runs side by side, one per thread.
+void time_rows(std::vector<report_row>& rows, const row_filter& mine, int rounds, double least, const progress& bar,
+               const std::map<const scene*, reference_state>& references, int threads);
 
 // Rank 0 receives every rank's measured rows (exactly as the rank measured
 // them: numbers as shortest round-trip text).

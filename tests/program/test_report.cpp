@@ -60,6 +60,39 @@ t_end = 10
     fs::remove_all(dir);
 }
 
+TEST_CASE("report: runs side by side on threads measure the same numbers as one at a time, and say where time went") {
+    // Each run has a problem of its own and a reference its two runs on two
+    // threads: every measured number (steps, evaluations, errors) must be
+    // the same bits whatever the thread count; only the times differ.
+    const scene s = parse_scene(R"(name = "pendulum"
+system = "pendulum"
+methods = ["leapfrog_kdk", "blanes_moan_s6", "dprkn6_controlled", "odeint_dopri5"]
+dt = {from = 0.2, to = 0.05, count = 3}
+tolerances = [1e-5, 1e-9]
+t_end = 30
+)",
+                                "threads.toml");
+    std::map<int, std::vector<std::vector<std::string>>> measured;
+    for (int threads : {1, 2}) {
+        const fs::path dir = scratch_directory("sympl_test_report_threads_" + std::to_string(threads));
+        fs::remove_all(dir);
+        report_options o{dir.string(), true, false, false};
+        o.threads = threads;
+        std::ostringstream out;
+        run_report({s}, o, out);
+        for (auto row : read_csv(dir / "work_precision.csv")) {
+            row.erase(row.begin() + 10, row.begin() + 13);  // seconds, seconds_min, seconds_max
+            measured[threads].push_back(row);
+        }
+        const std::string summary = (std::stringstream() << std::ifstream(dir / "summary.md").rdbuf()).str();
+        CHECK(summary.find("phases on " + std::to_string(threads) + " thread") != std::string::npos);
+        CHECK(out.str().find("time: references and measured runs ") != std::string::npos);
+        fs::remove_all(dir);
+    }
+    REQUIRE(measured[1].size() == 1 + 2 * 3 + 2 * 2);  // two methods over 3 steps, two over 2 tolerances
+    CHECK(measured[1] == measured[2]);
+}
+
 TEST_CASE("report: an unstable run is reported with its step and time, never as a number") {
     const fs::path dir = scratch_directory("sympl_test_unstable");
     fs::remove_all(dir);
