@@ -138,6 +138,28 @@ struct substep_updates {
     bool velocity_is_p = false;
 };
 
+// A user's force or velocity that returns a vector of another size would
+// write past the state in the loop: tried once per new dimension, at the
+// state about to be stepped, before any step (not counted as evaluations).
+// On a mismatch `force` is emptied, so that the next call checks again.
+template <class H, class State, class Vector>
+void check_output_sizes(const H& h, const State& x, Vector& force, Vector& velocity) {
+    const Eigen::Index n = x.q.size();
+    sympl::force(h, x.q, force);
+    sympl::velocity(h, x.p, velocity);
+    for (auto [what, size] : {std::pair{"force", force.size()}, std::pair{"velocity", velocity.size()}})
+        if (size != n) {
+            const Eigen::Index got = size;
+            force.resize(0);
+            throw invalid_argument("splitting_stepper: the Hamiltonian's " + std::string(what) + " returned " +
+                                   std::to_string(got) + " components for a state of dimension " + std::to_string(n) +
+                                   "; expected equal dimensions");
+        }
+}
+
+template <bool Compensated, class Loop, class State>
+void walk_force_gradient(Loop& loop, State& x, typename State::scalar dt, std::size_t n, bool fresh);
+
 // The table's sub-steps, the workspace, what the last run left (its last force
 // and velocity, and whether they are those of the state it returned) and the
 // evaluation counts. splitting_stepper decides what may be reused.
@@ -181,23 +203,6 @@ struct splitting_loop : substep_updates<H, State> {
         force_fresh = velocity_fresh = p_before_valid = false;
     }
 
-    // A user's force or velocity that returns a vector of another size would
-    // write past the state in the loop: tried once per new dimension, at the
-    // state about to be stepped, before any step (not counted as evaluations).
-    void check_output_sizes(const State& x) {
-        const Eigen::Index n = x.q.size();
-        sympl::force(h, x.q, force);
-        sympl::velocity(h, x.p, velocity);
-        for (auto [what, size] : {std::pair{"force", force.size()}, std::pair{"velocity", velocity.size()}})
-            if (size != n) {
-                const Eigen::Index got = size;
-                force.resize(0);  // checked again on the next call
-                throw invalid_argument("splitting_stepper: the Hamiltonian's " + std::string(what) + " returned " +
-                                       std::to_string(got) + " components for a state of dimension " +
-                                       std::to_string(n) + "; expected equal dimensions");
-            }
-    }
-
     // n steps. have_force: `force` is F(x.q), so a first kick takes it as it
     // is; have_velocity: likewise `velocity` for a first drift; join (with
     // have_force, where p_before_last_kick is valid and dt is p_before_dt): x
@@ -214,8 +219,8 @@ struct splitting_loop : substep_updates<H, State> {
         }
         p_before_valid = false;
         if (!gradient_ops.empty())
-            return options.compensated ? run_with_gradient<true>(x, dt, n, have_force)
-                                       : run_with_gradient<false>(x, dt, n, have_force);
+            return options.compensated ? walk_force_gradient<true>(*this, x, dt, n, have_force)
+                                       : walk_force_gradient<false>(*this, x, dt, n, have_force);
         const std::size_t L = weights.size();
         if (n > 1) {
             for (std::size_t k = 0; k < L; ++k) sizes[k] = weights[k] * dt;
@@ -368,38 +373,6 @@ struct splitting_loop : substep_updates<H, State> {
         }
     }
 
-    // A force-gradient table, walked sub-step by sub-step (the force reused
-    // while q has not moved): p += h F + 2 g dt^3 J_F M^-1 F (table.hpp), the
-    // two terms as two kicks, M^-1 F = velocity(F) for quadratic T.
-    template <bool Compensated>
-    void run_with_gradient(State& x, scalar dt, std::size_t n, bool fresh) {
-        if constexpr (differentiable_force<H, vector>) {
-            const Eigen::Index dim = x.q.size();
-            if (along.size() != dim) along.resize(dim), force_change.resize(dim);
-            const scalar dt3 = dt * dt * dt;
-            for (std::size_t step = 0; step < n; ++step)
-                for (const substep& o : gradient_ops) {
-                    const scalar hs = static_cast<scalar>(o.weight) * dt;
-                    if (o.kind == substep::drift) {
-                        this->template drift<Compensated>(x, velocity, hs);
-                        ++velocities_counted;
-                        fresh = false;
-                        continue;
-                    }
-                    if (!fresh) sympl::force(h, x.q, force), ++forces_counted, fresh = true;
-                    this->template kick<Compensated>(x, force, hs);
-                    if (o.gradient != 0) {
-                        this->velocity_of(force, along);
-                        force_derivative(h, x.q, along, force_change);
-                        ++derivatives_counted;
-                        this->template kick<Compensated>(x, force_change, 2 * static_cast<scalar>(o.gradient) * dt3);
-                    }
-                }
-            force_fresh = fresh;
-            velocity_fresh = false;
-        }
-    }
-
     table method;
     stepper_options options;
     std::vector<scalar> weights;             // the canonical sub-steps' weights, s0 first
@@ -415,6 +388,39 @@ struct splitting_loop : substep_updates<H, State> {
     std::vector<substep> gradient_ops;  // a force-gradient table's sub-steps (empty for other tables)
     vector along, force_change;         // M^-1 F and J_F M^-1 F (force-gradient tables only)
 };
+
+// A force-gradient table, walked sub-step by sub-step (the force reused
+// while q has not moved): p += h F + 2 g dt^3 J_F M^-1 F (table.hpp), the two
+// terms as two kicks, M^-1 F = velocity(F) for quadratic T.
+template <bool Compensated, class Loop, class State>
+void walk_force_gradient(Loop& loop, State& x, typename State::scalar dt, std::size_t n, bool fresh) {
+    using scalar = typename State::scalar;
+    if constexpr (differentiable_force<decltype(loop.h), typename State::vector>) {
+        const Eigen::Index dim = x.q.size();
+        if (loop.along.size() != dim) loop.along.resize(dim), loop.force_change.resize(dim);
+        const scalar dt3 = dt * dt * dt;
+        for (std::size_t step = 0; step < n; ++step)
+            for (const substep& o : loop.gradient_ops) {
+                const scalar hs = static_cast<scalar>(o.weight) * dt;
+                if (o.kind == substep::drift) {
+                    loop.template drift<Compensated>(x, loop.velocity, hs);
+                    ++loop.velocities_counted;
+                    fresh = false;
+                    continue;
+                }
+                if (!fresh) sympl::force(loop.h, x.q, loop.force), ++loop.forces_counted, fresh = true;
+                loop.template kick<Compensated>(x, loop.force, hs);
+                if (o.gradient != 0) {
+                    loop.velocity_of(loop.force, loop.along);
+                    force_derivative(loop.h, x.q, loop.along, loop.force_change);
+                    ++loop.derivatives_counted;
+                    loop.template kick<Compensated>(x, loop.force_change, 2 * static_cast<scalar>(o.gradient) * dt3);
+                }
+            }
+        loop.force_fresh = fresh;
+        loop.velocity_fresh = false;
+    }
+}
 
 }  // namespace detail
 }  // namespace sympl

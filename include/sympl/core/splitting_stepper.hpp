@@ -146,7 +146,8 @@ private:
         if (loop_.kinetic.dimension() != x.q.size()) loop_.kinetic.recognise(loop_.h, x.q.size());
         if (loop_.force.size() != x.q.size()) {  // once per dimension
             size_workspace(x.q.size());
-            if constexpr (State::dimension == Eigen::Dynamic) loop_.check_output_sizes(x);
+            if constexpr (State::dimension == Eigen::Dynamic)
+                detail::check_output_sizes(loop_.h, x, loop_.force, loop_.velocity);
         }
     }
 

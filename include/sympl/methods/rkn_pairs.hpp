@@ -46,6 +46,62 @@
 
 namespace sympl {
 
+namespace detail {
+
+// The root-mean-square norm of the error estimate (eq, ep) over q and p, each
+// component in units of atol + rtol max(|x|, |y|) (Hairer, Norsett & Wanner I,
+// eq. II.4.11), for a step from x to y.
+template <class State, class Vector>
+double scaled_error_norm(const State& x, const State& y, const Vector& eq, const Vector& ep, const control_options& o) {
+    using scalar = typename State::scalar;
+    using std::abs;
+    using std::max;
+    using std::sqrt;
+    const Eigen::Index n = x.size();
+    if (n == 0) return 0;
+    const scalar atol(o.absolute_tolerance), rtol(o.relative_tolerance);
+    scalar sum(0);
+    for (Eigen::Index i = 0; i < n; ++i) {
+        const scalar sq = atol + rtol * max(abs(x.q[i]), abs(y.q[i]));
+        const scalar sp = atol + rtol * max(abs(x.p[i]), abs(y.p[i]));
+        sum += (eq[i] / sq) * (eq[i] / sq) + (ep[i] / sp) * (ep[i] / sp);
+    }
+    return static_cast<double>(primal(sqrt(sum / scalar(2 * n))));
+}
+
+// A pair's continuous extension as weights of the powers theta^0..4 for q and
+// for p. p's are those of q's derivative, (k + 2) b_dense[i][k]
+// (rkn_tables.hpp), formed in long double: in double, the published values to
+// the last bit. Zero for a pair without one.
+template <class P, class scalar>
+struct rkn_dense_weights {
+    std::array<std::array<scalar, 5>, P::stages> b{}, bp{};
+    rkn_dense_weights() {
+        using wide = std::conditional_t<std::is_floating_point_v<scalar>, long double, scalar>;
+        if constexpr (rkn_dense_table<P>)
+            for (int i = 0; i < P::stages; ++i)
+                for (int k = 0; k < 5; ++k) {
+                    b[i][k] = coefficient_as<scalar>(P::b_dense[i][k]);
+                    bp[i][k] = scalar(wide(k + 2) * coefficient_as<wide>(P::b_dense[i][k]));
+                }
+    }
+};
+
+// A force already evaluated, with the q it belongs to (k the force, u the
+// acceleration M^-1 k): the start of the last attempt, and (FSAL) its end.
+template <class vector>
+struct known_force {
+    vector q, k, u;
+    bool valid = false;
+    bool holds(const vector& x) const { return valid && q.size() == x.size() && q == x; }
+    void keep(const vector& x, const vector& k_, const vector& u_) {
+        q = x, k = k_, u = u_;
+        valid = true;
+    }
+};
+
+}  // namespace detail
+
 // Any pair P on a separable Hamiltonian with linear velocity(p).
 template <class H, class State, rkn_pair_table P>
     requires phase_space_state<State> && separable_hamiltonian<H, typename State::vector>
@@ -75,19 +131,7 @@ public:
     double attempt(const State& x, scalar /*t*/, scalar dt, const control_options& o) {
         check(x, dt, "attempt");
         advance_trial(x, dt, true);
-        using std::abs;
-        using std::max;
-        using std::sqrt;
-        const Eigen::Index n = x.size();
-        if (n == 0) return 0;
-        const scalar atol(o.absolute_tolerance), rtol(o.relative_tolerance);
-        scalar sum(0);
-        for (Eigen::Index i = 0; i < n; ++i) {
-            const scalar sq = atol + rtol * max(abs(x.q[i]), abs(trial_.q[i]));
-            const scalar sp = atol + rtol * max(abs(x.p[i]), abs(trial_.p[i]));
-            sum += (error_q_[i] / sq) * (error_q_[i] / sq) + (error_p_[i] / sp) * (error_p_[i] / sp);
-        }
-        return static_cast<double>(primal(sqrt(sum / scalar(2 * n))));
+        return detail::scaled_error_norm(x, trial_, error_q_, error_p_, o);
     }
     void accept(State& x) {
         if (!trial_ready_)
@@ -153,7 +197,7 @@ public:
     {
         std::vector<scalar> out;
         detail::carried_writer<scalar> w{out};
-        for (const known_force& f : known_) {
+        for (const auto& f : known_) {
             w.flag(f.valid);
             for (const vector* v : {&f.q, &f.k, &f.u}) w.numbers(*v);
         }
@@ -163,8 +207,8 @@ public:
         requires std::is_floating_point_v<scalar>
     {
         detail::carried_reader<scalar> r{values, who_.c_str()};
-        std::array<known_force, 2> known;
-        for (known_force& f : known) {
+        std::array<detail::known_force<vector>, 2> known;
+        for (auto& f : known) {
             f.valid = r.flag();
             for (vector* v : {&f.q, &f.k, &f.u}) r.numbers(*v);
             if (f.k.size() != f.q.size() || f.u.size() != f.q.size()) r.refuse("holds a force of another size");
@@ -172,7 +216,7 @@ public:
         r.done();
         if (known[0].valid && known[1].valid && known[0].q.size() != known[1].q.size())
             r.refuse("holds forces of different sizes");
-        for (const known_force& f : known)
+        for (const auto& f : known)
             if (f.valid) size_workspace(f.q.size());  // sizing after this would forget them
         known_ = std::move(known);
     }
@@ -285,43 +329,13 @@ private:
         trial_ready_ = true;
     }
 
-    struct dense_weights {
-        std::array<std::array<scalar, 5>, stages> b{}, bp{};
-    };
-    static dense_weights make_dense() {
-        dense_weights d;
-        // p's weights are those of q's derivative, (k + 2) b_dense[i][k]
-        // (rkn_tables.hpp), formed in long double: in double, the published
-        // values to the last bit.
-        using wide = std::conditional_t<std::is_floating_point_v<scalar>, long double, scalar>;
-        if constexpr (rkn_dense_table<P>)
-            for (int i = 0; i < stages; ++i)
-                for (int k = 0; k < 5; ++k) {
-                    d.b[i][k] = detail::coefficient_as<scalar>(P::b_dense[i][k]);
-                    d.bp[i][k] = scalar(wide(k + 2) * detail::coefficient_as<wide>(P::b_dense[i][k]));
-                }
-        return d;
-    }
-
-    // A force already evaluated, with the q it belongs to: the start of the
-    // last attempt, and (FSAL) its end.
-    struct known_force {
-        vector q, k, u;
-        bool valid = false;
-        bool holds(const vector& x) const { return valid && q.size() == x.size() && q == x; }
-        void keep(const vector& x, const vector& k_, const vector& u_) {
-            q = x, k = k_, u = u_;
-            valid = true;
-        }
-    };
-
     H h_;
     quadratic_kinetic<vector> kinetic_;  // a generic T found quadratic: M^-1 p, not a gradient per stage
     std::string who_;
     rkn_coefficients<P, scalar> co_;
-    dense_weights dense_ = make_dense();
+    detail::rkn_dense_weights<P, scalar> dense_;
     workspace w_, partial_;  // the step's stages; a partial step's (interpolate)
-    std::array<known_force, 2> known_;
+    std::array<detail::known_force<vector>, 2> known_;
     vector error_q_, error_p_;
     State trial_;
     scalar dt_{};

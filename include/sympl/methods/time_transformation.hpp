@@ -164,6 +164,48 @@ struct time_transformed_options {
     std::size_t first_step = 0;
 };
 
+namespace detail {
+
+// X overshot `target` in a step of ds from `before`: finds h in (0, ds) with
+// t(h) = target and leaves X at it, its time set to target exactly.
+// t(h) - target is negative at 0 and positive at ds; the Illinois variant of
+// regula falsi keeps that bracket and converges superlinearly (Dowell &
+// Jarratt 1971), where a plain secant can leave the bracket on a long, curved
+// step. `slack` widens the tolerance for a stepper whose rounding it magnifies
+// (extrapolation.hpp); step_from_before(X, h) redoes the step with h.
+template <class S, int D, class Step>
+void land_on_time(phase_space<S, D>& X, const phase_space<S, D>& before, S ds, S target, S slack,
+                  std::size_t step_number, const Step& step_from_before) {
+    using std::abs;
+    const S tb = physical_time(before), tolerance = 2 * slack * std::numeric_limits<S>::epsilon() * abs(target);
+    S a = 0, fa = tb - target, b = ds, fb = physical_time(X) - target, f1 = fb;
+    int kept = 0;  // which end stayed twice in a row (-1 a, +1 b)
+    for (int i = 0; i < 100 && abs(f1) > tolerance; ++i) {
+        S h = b - fb * (b - a) / (fb - fa);
+        if (!(h > a && h < b)) h = a + (b - a) / 2;
+        if (!(h > a && h < b)) break;  // the bracket is down to adjacent numbers
+        X = before;
+        step_from_before(X, h);
+        f1 = physical_time(X) - target;
+        if (f1 < S(0)) {
+            a = h, fa = f1;
+            if (kept == 1) fb /= 2;
+            kept = 1;
+        } else {
+            b = h, fb = f1;
+            if (kept == -1) fa /= 2;
+            kept = -1;
+        }
+    }
+    if (abs(f1) > 4 * tolerance)
+        throw integration_error("integrate_to_time: could not land on t = " + detail::number(target) + " (missed by " +
+                                    detail::number(f1) + ")",
+                                step_number, static_cast<double>(primal(tb)));
+    X.q[X.size() - 1] = target;  // within 2 eps: time lands exactly
+}
+
+}  // namespace detail
+
 // Runs a stepper of logh<H> on the extended state X from its time to t_end in
 // fictitious steps of ds, landing exactly on t_end and on each observation
 // time in between (the step that would pass one is shortened to end on it,
@@ -211,41 +253,12 @@ run_summary integrate_to_time(Stepper& stepper, phase_space<S, D>& X, S t_end, S
             check(X, before, ds);
             carried = true;
             if (physical_time(X) > target) {
-                // Overshot: find h in (0, ds) with t(h) = target. t(h) - target is
-                // negative at 0 and positive at ds; the Illinois variant of regula
-                // falsi keeps that bracket and converges superlinearly (Dowell &
-                // Jarratt 1971), where a plain secant can leave the bracket on a
-                // long, curved step. An extrapolated step magnifies the rounding of
-                // its inner results (extrapolation.hpp), and with it the noise in t(h).
-                S slack = 1;
+                S slack = 1;  // an extrapolated step magnifies its inner rounding, and the noise in t(h)
                 if constexpr (requires { stepper.amplification(); }) slack = S(stepper.amplification());
-                const S tb = physical_time(before),
-                        tolerance = 2 * slack * std::numeric_limits<S>::epsilon() * abs(target);
-                S a = 0, fa = tb - target, b = ds, fb = physical_time(X) - target, f1 = fb;
-                int kept = 0;  // which end stayed twice in a row (-1 a, +1 b)
-                for (int i = 0; i < 100 && abs(f1) > tolerance; ++i) {
-                    S h = b - fb * (b - a) / (fb - fa);
-                    if (!(h > a && h < b)) h = a + (b - a) / 2;
-                    if (!(h > a && h < b)) break;  // the bracket is down to adjacent numbers
-                    X = before;
-                    step(X, h, false);
-                    check(X, before, h);
-                    f1 = physical_time(X) - target;
-                    if (f1 < S(0)) {
-                        a = h, fa = f1;
-                        if (kept == 1) fb /= 2;
-                        kept = 1;
-                    } else {
-                        b = h, fb = f1;
-                        if (kept == -1) fa /= 2;
-                        kept = -1;
-                    }
-                }
-                if (abs(f1) > 4 * tolerance)
-                    throw integration_error("integrate_to_time: could not land on t = " + detail::number(target) +
-                                                " (missed by " + detail::number(f1) + ")",
-                                            r.steps + 1, static_cast<double>(primal(tb)));
-                X.q[X.size() - 1] = target;  // within 2 eps: time lands exactly
+                detail::land_on_time(X, before, ds, target, slack, r.steps + 1, [&](phase_space<S, D>& x, S h) {
+                    step(x, h, false);
+                    check(x, before, h);
+                });
             }
             ++r.steps;
             if constexpr (!std::is_same_v<std::decay_t<Observer>, no_observer>)
