@@ -15,6 +15,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <functional>
+#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
@@ -51,7 +52,7 @@ int main(int argc, char** argv) {
         else if (!std::strcmp(argv[i], "--orbits") && i + 1 < argc) orbits = std::atoi(argv[++i]);
         else if (!std::strcmp(argv[i], "--e") && i + 1 < argc) e = std::atof(argv[++i]);
     }
-    const double pi = std::acos(-1.0), t_end = 2 * pi * orbits;
+    const double pi = std::numbers::pi, t_end = 2 * pi * orbits;
     const sympl::hamiltonians::kepler h{};
     const K x0 = sympl::hamiltonians::kepler::initial_state(e);
     const K exact = sympl::hamiltonians::kepler::exact_state(e, t_end);

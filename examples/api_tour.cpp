@@ -4,6 +4,7 @@
 // installed sympl shows here. Exit code 0 when every check holds.
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 #include <sympl/sympl.hpp>
 #include <sympl/analysis/table_order.hpp>
@@ -49,7 +50,7 @@ int main() {
     using KX = sympl::phase_space<double, 3>;
     KX X = sympl::to_extended(kepler, sympl::hamiltonians::kepler::initial_state(0.9));
     sympl::splitting_stepper<sympl::logh<sympl::hamiltonians::kepler>, KX> logh({kepler}, sympl::method("blanes_moan_s6"));
-    const double pi = std::acos(-1.0);
+    const double pi = std::numbers::pi;
     sympl::integrate_to_time(logh, X, 2 * pi, 2 * pi / 1000);
     const K back = sympl::physical_state(X);
     const double miss = sympl::max_difference(back, sympl::hamiltonians::kepler::initial_state(0.9));

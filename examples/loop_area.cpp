@@ -10,6 +10,7 @@
 // How to read it: README, "Phase-space area".
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <string>
 
 #include <sympl/sympl.hpp>
@@ -21,7 +22,7 @@ using V1 = Eigen::Matrix<double, 1, 1>;
 
 int main() {
     const sympl::hamiltonians::pendulum h{};
-    const double dt = 0.2, r = 0.2, pi = std::acos(-1.0);
+    const double dt = 0.2, r = 0.2, pi = std::numbers::pi;
     const auto circle = [&](double s) { return State(V1(r * std::cos(2 * pi * s)), V1(1.5 + r * std::sin(2 * pi * s))); };
     const double initial_area = sympl::loop_area(sympl::carry_loop(circle, [](State&) {}, {200, 200, 1e9}), 0);
     std::printf("method,step,t,area_200,area_refined,points,area_error,defect\n");

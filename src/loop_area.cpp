@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <sympl/analysis/phase_space_measures.hpp>
 
@@ -17,7 +18,7 @@ double loop_area_error(const problem& p, const method_spec& m, run_request rq, d
     rq.trajectory_every = rq.energy_series_every = 0;
     rq.output_times.clear();
     const std::size_t n = p.degrees_of_freedom;
-    const double r = 0.05 * std::max(1.0, std::hypot(p.x0[0], p.x0[n])), pi = std::acos(-1.0);
+    const double r = 0.05 * std::max(1.0, std::hypot(p.x0[0], p.x0[n])), pi = std::numbers::pi;
     using State = phase_space<double>;
     const auto circle = [&](double s) {
         std::vector<double> v = p.x0;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -37,7 +38,7 @@ struct long_span {
 long_span measure(const study_context& c) {
     using K = phase_space<double, 2>;
     const hamiltonians::kepler kep{};
-    const double ecc = 0.5, period = 2 * std::acos(-1.0);
+    const double ecc = 0.5, period = 2 * std::numbers::pi;
     // The leapfrog takes 4 steps of h for each step of 4h of RK4: one force
     // per step against four, so both spend the same forces per unit time.
     const std::size_t per_period = 400;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <sympl/sympl.hpp>
 #include <sympl/hamiltonians/kepler.hpp>
@@ -17,7 +18,7 @@ namespace fs = std::filesystem;
 void kepler_099_study(const study_context& c) {
     using K = phase_space<double, 2>;
     const hamiltonians::kepler h{};
-    const double e = 0.99, period = 2 * std::acos(-1.0);
+    const double e = 0.99, period = 2 * std::numbers::pi;
     const K x0 = hamiltonians::kepler::initial_state(e);
     const K exact = hamiltonians::kepler::exact_state(e, period);
     const double e0 = energy(h, x0);

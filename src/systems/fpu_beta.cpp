@@ -5,6 +5,7 @@
 #include "../systems.hpp"
 
 #include <cmath>
+#include <numbers>
 
 namespace sympl::app {
 
@@ -16,7 +17,7 @@ system_entry fpu_beta_entry() {
         .build = [](const parameter_values& v) {
             const auto n = std::size_t(v.at("n"));
             std::vector<double> x0(2 * n, 0.0);
-            const double pi = std::acos(-1.0);
+            const double pi = std::numbers::pi;
             for (std::size_t k = 0; k < n; ++k) x0[k] = std::sin(pi * double(k + 1) / double(n + 1));
             return model(hamiltonians::fpu_beta{v.at("beta")}, x0);
         },

@@ -5,6 +5,7 @@
 #include "../systems.hpp"
 
 #include <cmath>
+#include <numbers>
 
 namespace sympl::app {
 
@@ -16,7 +17,7 @@ system_entry toda_entry() {
         .build = [](const parameter_values& v) {
             const auto n = std::size_t(v.at("n"));
             std::vector<double> x0(2 * n, 0.0);
-            for (std::size_t k = 0; k < n; ++k) x0[n + k] = std::cos(2 * std::acos(-1.0) * double(k) / double(n));
+            for (std::size_t k = 0; k < n; ++k) x0[n + k] = std::cos(2 * std::numbers::pi * double(k) / double(n));
             return model(hamiltonians::toda{}, x0);
         },
         .period = {"period of the lowest linear mode, pi / sin(pi / n)",

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include <sympl/sympl.hpp>
 #include <sympl/charged/boris.hpp>
@@ -44,7 +45,7 @@ TEST_CASE("Boris in uniform B: speed and gyration centre kept to rounding over 1
     kinetic_state<> x(vec3<>(1, 0, 0), vec3<>(0, 1, 0));
     const auto centre = [&](const kinetic_state<>& y) { return vec3<>(y.q + y.p.cross(vec3<>(0, 0, 1))); };
     const vec3<> c0 = centre(x);
-    const double dt = 2 * std::acos(-1.0) / 10;
+    const double dt = 2 * std::numbers::pi / 10;
     const std::size_t n = 10'000'000;
     double worst_speed = 0, worst_centre = 0;
     for (std::size_t i = 1; i <= n; ++i) {

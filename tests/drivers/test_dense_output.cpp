@@ -7,6 +7,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -25,7 +26,7 @@ using namespace sympl;
 
 namespace {
 using S2 = phase_space<double, 2>;
-const double two_pi = 2 * std::acos(-1.0);
+const double two_pi = 2 * std::numbers::pi;
 const hamiltonians::harmonic_oscillator oscillator{};
 const hamiltonians::kepler kepler{};
 const S2 oscillator_start(Eigen::Vector2d(1, 0), Eigen::Vector2d(0, 0.5));  // q = (cos t, sin t / 2)

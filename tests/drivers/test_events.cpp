@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -24,7 +25,7 @@ namespace {
 using S1 = phase_space<double, 1>;
 using S2 = phase_space<double, 2>;
 using V1 = Eigen::Matrix<double, 1, 1>;
-const double pi = std::acos(-1.0);
+const double pi = std::numbers::pi;
 const hamiltonians::harmonic_oscillator oscillator{};
 const hamiltonians::kepler kepler{};
 

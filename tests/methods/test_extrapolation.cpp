@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include <sympl/methods/catalog.hpp>
@@ -21,7 +22,7 @@ using namespace sympl;
 using X1 = phase_space<double, 1>;
 
 namespace {
-const double pi = std::acos(-1.0);
+const double pi = std::numbers::pi;
 
 template <class H>
 double measured_order(const H& h, const char* name, int columns, double t_end, double floor = 1e-13) {

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <vector>
 
 #include <sympl/methods/catalog.hpp>
@@ -20,7 +21,7 @@ using K = phase_space<double, 2>;
 using KX = phase_space<double, 3>;  // (q, t), (p, p_t)
 
 namespace {
-const double pi = std::acos(-1.0);
+const double pi = std::numbers::pi;
 
 // Kepler orbit of eccentricity e from pericentre, one period, in n fictitious steps.
 K kepler_period(const table& t, double e, std::size_t n, stepper_options options = {}) {

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <numbers>
 #include <string>
 #include <utility>
 #include <vector>
@@ -36,7 +37,7 @@ inline std::pair<std::array<double, 3>, std::array<double, 3>> to_cartesian(cons
     if (!(std::isfinite(gm) && gm > 0))
         throw invalid_argument(who + "GM = " + detail::number_text(gm) + "; expected a finite GM > 0");
     // Kepler's equation E - e sin E = M by Newton from E = M + e sin M (M in [-pi, pi]).
-    const double pi = 3.141592653589793;
+    const double pi = std::numbers::pi;
     const double M = std::remainder(o.mean_anomaly, 2 * pi);
     double E = o.e < 0.8 ? M + o.e * std::sin(M) : (M < 0 ? -pi : pi);
     for (int k = 0; k < 50; ++k) {
