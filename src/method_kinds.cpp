@@ -12,6 +12,8 @@
 #include <sympl/methods/extrapolation.hpp>
 #include <sympl/planetary/wisdom_holman_stepper.hpp>
 
+#include "near_names.hpp"
+
 namespace sympl::app {
 
 // The registry is listed in the order of method_kind: entry_of indexes it.
@@ -58,6 +60,14 @@ std::optional<std::size_t> classic_index(const std::string& name) {
     return std::nullopt;
 }
 
+// "did you mean 'yoshida_6'? " for a table name that is none: the nearest of
+// the catalog's tables and the scene's own, or "".
+std::string nearest_table(const std::string& given, const std::map<std::string, table>& inline_tables) {
+    std::vector<std::string> names = catalog_names();
+    for (const auto& entry : inline_tables) names.push_back(entry.first);
+    return did_you_mean(given, names);
+}
+
 std::string trimmed(const std::string& s) {
     const auto first = s.find_first_not_of(" \t"), last = s.find_last_not_of(" \t");
     return first == std::string::npos ? "" : s.substr(first, last - first + 1);
@@ -77,7 +87,8 @@ method_spec extrapolated(const std::string& name, const std::map<std::string, ta
         throw invalid_argument("method '" + name + "': column count '" + count + "'" + usage);
     auto inner = resolve_method(inner_name, inline_tables);
     if (!inner || (inner->kind != method_kind::table && inner->kind != method_kind::logh) || inner->extrapolation_columns)
-        throw invalid_argument("method '" + name + "': '" + inner_name + "' is not a table or logh(<table>)" + usage);
+        throw invalid_argument("method '" + name + "': '" + inner_name + "' is not a table or logh(<table>); " +
+                               nearest_table(inner_name, inline_tables) + usage.substr(2));
     try {
         extrapolation_order(*inner->coefficients);
     } catch (const invalid_argument& e) {
@@ -105,7 +116,9 @@ method_spec on_extended_phase_space(const std::string& name, method_kind kind, s
         const auto equals = option.find('=');
         const std::string key = trimmed(option.substr(0, equals));
         const std::string value = equals == std::string::npos ? "" : trimmed(option.substr(equals + 1));
-        if (key != "omega") throw invalid_argument("method '" + name + "': unknown option '" + key + "'; expected omega" + usage);
+        if (key != "omega")
+            throw invalid_argument("method '" + name + "': unknown option '" + key + "'; " +
+                                   did_you_mean(key, {"omega"}) + "expected omega" + usage);
         double w = 0;
         const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), w);
         if (error != std::errc{} || end != value.data() + value.size() || !std::isfinite(w) || !(w > 0))
@@ -115,7 +128,8 @@ method_spec on_extended_phase_space(const std::string& name, method_kind kind, s
     }
     const auto inner = resolve_method(inner_name, inline_tables);
     if (!inner || inner->kind != method_kind::table || inner->extrapolation_columns || inner->compensated)
-        throw invalid_argument("method '" + name + "': '" + inner_name + "' is not a table" + usage);
+        throw invalid_argument("method '" + name + "': '" + inner_name + "' is not a table; " +
+                               nearest_table(inner_name, inline_tables) + usage.substr(2));
     sympl::detail::leapfrog_composition_weights(*inner->coefficients, "method '" + name + "'");  // throws naming it
     method_spec m = spec(name, kind, inner->coefficients);
     m.omega = omega;
@@ -136,7 +150,8 @@ method_spec charged_split(const std::string& name, charged_scheme scheme, std::s
     const auto inner = resolve_method(inner_name, inline_tables);
     if (!inner || inner->kind != method_kind::table || inner->extrapolation_columns || inner->compensated ||
         inner->coefficients->has_force_gradient())
-        throw invalid_argument("method '" + name + "': '" + inner_name + "' is not a plain table" + usage);
+        throw invalid_argument("method '" + name + "': '" + inner_name + "' is not a plain table; " +
+                               nearest_table(inner_name, inline_tables) + usage.substr(2));
     if (composition)
         sympl::detail::leapfrog_composition_weights(*inner->coefficients, "method '" + name + "'");  // throws naming it
     method_spec m = spec(name, method_kind::charged, inner->coefficients);
@@ -166,8 +181,9 @@ method_spec wisdom_holman(const std::string& name, const std::map<std::string, t
         if (key != "corrector" && key != "kernel" && key != "coordinates") {
             // Part of an inline table's name (which may hold commas), or a misspelt option.
             if (equals != std::string::npos && !resolve_method(trimmed(inner_name), inline_tables))
-                throw invalid_argument("method '" + name + "': unknown option '" + key +
-                                       "'; expected corrector, kernel or coordinates" + usage);
+                throw invalid_argument("method '" + name + "': unknown option '" + key + "'; " +
+                                       did_you_mean(key, {"corrector", "kernel", "coordinates"}) +
+                                       "expected corrector, kernel or coordinates" + usage);
             break;
         }
         if (equals == std::string::npos || value.empty())
@@ -180,13 +196,15 @@ method_spec wisdom_holman(const std::string& name, const std::map<std::string, t
         } else if (key == "coordinates") {
             if (value == "jacobi") m.jacobi = true;
             else if (value != "democratic_heliocentric")
-                throw invalid_argument("method '" + name + "': coordinates = '" + value + "'" + usage);
+                throw invalid_argument("method '" + name + "': coordinates = '" + value + "'; " +
+                                       did_you_mean(value, {"democratic_heliocentric", "jacobi"}) + usage.substr(2));
         } else if (value == "composition") {
             m.composition_kernel = true;
         } else if (value == "lazy") {
             m.lazy_kernel = true;
         } else if (value != "kick") {
-            throw invalid_argument("method '" + name + "': kernel = '" + value + "'" + usage);
+            throw invalid_argument("method '" + name + "': kernel = '" + value + "'; " +
+                                   did_you_mean(value, {"composition", "lazy", "kick"}) + usage.substr(2));
         }
         inner_name = inner_name.substr(0, comma);
     }
@@ -194,12 +212,28 @@ method_spec wisdom_holman(const std::string& name, const std::map<std::string, t
     const auto inner = resolve_method(inner_name, inline_tables);
     if (!inner || inner->kind != method_kind::table || inner->extrapolation_columns || inner->compensated ||
         inner->coefficients->has_force_gradient())
-        throw invalid_argument("method '" + name + "': '" + inner_name + "' is not a plain table" + usage);
+        throw invalid_argument("method '" + name + "': '" + inner_name + "' is not a plain table; " +
+                               nearest_table(inner_name, inline_tables) + usage.substr(2));
     m.coefficients = inner->coefficients;
     plan_wisdom_holman(*m.coefficients, wisdom_holman_options_of(m), "method '" + name + "'");  // throws naming the misfit
     return m;
 }
 }  // namespace
+
+std::string did_you_mean_method(const std::string& name, const std::map<std::string, table>& inline_tables) {
+    // logh(<table>) and compensated(<table>) resolve to nothing when their
+    // table is unknown: the same pattern around the nearest table.
+    for (const std::string prefix : {"logh(", "compensated("}) {
+        if (name.size() <= prefix.size() || name.rfind(prefix, 0) != 0 || name.back() != ')') continue;
+        const std::string inner = trimmed(name.substr(prefix.size(), name.size() - prefix.size() - 1));
+        std::vector<std::string> names = catalog_names();
+        for (const auto& entry : inline_tables) names.push_back(entry.first);
+        const std::vector<std::string> near = near_names(inner, names);
+        if (near.empty()) return "";
+        return "did you mean '" + prefix + near.front() + ")'? ";
+    }
+    return "";
+}
 
 wisdom_holman_options wisdom_holman_options_of(const method_spec& m) {
     return {.corrector_order = m.corrector_order,

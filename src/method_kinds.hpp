@@ -254,6 +254,11 @@ std::vector<std::string> method_names_beside_tables();
 inline constexpr int max_extrapolation_columns = 12;
 std::optional<method_spec> resolve_method(const std::string& name, const std::map<std::string, table>& inline_tables);
 
+// "did you mean 'logh(leapfrog_dkd)'? " for a pattern around an unknown
+// table (logh(...), compensated(...)) that resolve_method returned nothing
+// for, or "" (the other patterns name their nearest table in their error).
+std::string did_you_mean_method(const std::string& name, const std::map<std::string, table>& inline_tables);
+
 // The library's options for a wh(...) method: its corrector, kernel and
 // coordinates (the one place that maps them; the scene's check and the run
 // both ask it).

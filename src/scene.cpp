@@ -45,7 +45,9 @@ std::optional<scene_method> method_by_name(const reader& r, const toml::node& n,
         return std::nullopt;
     }
     if (!m) {
-        r.unknown_name(*name_node, "unknown method '" + name + "'; " + did_you_mean(name, method_names(inline_tables)) +
+        const std::string hint = did_you_mean_method(name, inline_tables);
+        r.unknown_name(*name_node, "unknown method '" + name + "'; " +
+                                       (hint.empty() ? did_you_mean(name, method_names(inline_tables)) : hint) +
                                        "expected a catalog name (sympl tables), an inline [[table]], "
                                        "logh(<table>), extrapolated(<table>, k), compensated(<table>), tao(<table>), "
                                        "semiexplicit(<table>), or one of: " + join(method_names_beside_tables()));

@@ -333,11 +333,13 @@ TEST_CASE("method kinds: wh(<table>, corrector, kernel, coordinates) checks its 
     const auto lazy = resolve_method("wh(leapfrog_dkd, corrector = 17, kernel = lazy, coordinates = jacobi)", {});
     CHECK((lazy->lazy_kernel && lazy->jacobi && !lazy->composition_kernel && lazy->corrector_order == 17));
     refused("wh(leapfrog_dkd, kernel = leisurely)", "kernel = 'leisurely'; expected wh(<a table");
-    refused("wh(leapfrog_dkd, coordinates = heliocentric)", "coordinates = 'heliocentric'; expected wh(<a table");
+    refused("wh(leapfrog_dkd, coordinates = heliocentric)",
+            "coordinates = 'heliocentric'; did you mean 'democratic_heliocentric'? expected wh(<a table");
     refused("wh(leapfrog_kdk, corrector)", "option 'corrector' has no value");
     refused("wh(leapfrog_kdk, corrector = 3, corrector = 5)", "'corrector' given twice");
     refused("wh(leapfrog_kdk, order = 3)", "unknown option 'order'; expected corrector, kernel or coordinates");
-    refused("wh(leapfrog_kdk, correctr = 17)", "unknown option 'correctr'; expected corrector, kernel or coordinates");
+    refused("wh(leapfrog_kdk, correctr = 17)",
+            "unknown option 'correctr'; did you mean 'corrector'? expected corrector, kernel or coordinates");
     refused("wh(leapfrog_kdk, kernel = composition, krnel = kick)", "unknown option 'krnel'");
     refused("wh(leapfrog_kdk, 3)", "'leapfrog_kdk, 3' is not a plain table");
 }
@@ -384,6 +386,28 @@ TEST_CASE("method kinds: wh(leapfrog_kdk) on the outer solar system, order 2 and
     MESSAGE("Jacobi, lazy kernel: h = 200: " << lazy << ", h = 100: " << lazy_half);
     CHECK(lazy * 1e3 < plain);
     CHECK(std::log2(lazy / lazy_half) > 3.5);
+}
+
+TEST_CASE("method kinds: a mistyped table or option inside a pattern names the nearest known one") {
+    const auto says = [](const std::string& name, const std::string& hint) {
+        CAPTURE(name);
+        CHECK_THROWS_WITH_AS(resolve_method(name, {}), doctest::Contains(hint.c_str()), sympl::invalid_argument);
+    };
+    says("tao(yoshda_6)", "'yoshda_6' is not a table; did you mean 'yoshida_6', ");
+    says("semiexplicit(yoshida_4x)", "did you mean 'yoshida_4', ");
+    says("cylindrical_split(blanes_moan_srkn11c)", "not a plain table; did you mean 'blanes_moan_srkn11b'");
+    says("cartesian_split(kahan_li8)", "did you mean 'kahan_li_8'");
+    says("wh(leapfrg_kdk)", "'leapfrg_kdk' is not a plain table; did you mean 'leapfrog_kdk'");
+    says("wh(leapfrog_kdk, kernal = lazy)", "unknown option 'kernal'; did you mean 'kernel'?");
+    says("wh(leapfrog_dkd, kernel = lazzy, coordinates = jacobi)", "kernel = 'lazzy'; did you mean 'lazy'?");
+    says("tao(yoshida_6, omegaa = 3)", "unknown option 'omegaa'; did you mean 'omega'?");
+    says("extrapolated(leapfrg_dkd, 4)", "did you mean 'leapfrog_dkd'?");
+    // logh(...) and compensated(...) of an unknown table resolve to nothing:
+    // the scene's "unknown method" error asks did_you_mean_method.
+    CHECK(!resolve_method("logh(leapfrg_dkd)", {}));
+    CHECK(did_you_mean_method("logh(leapfrg_dkd)", {}) == "did you mean 'logh(leapfrog_dkd)'? ");
+    CHECK(did_you_mean_method("compensated(blanes_moan_s1O)", {}) == "did you mean 'compensated(blanes_moan_s10)'? ");
+    CHECK(did_you_mean_method("logh(nothing_like_a_table_at_all)", {}).empty());
 }
 
 }  // namespace test_program_test_method_kinds
