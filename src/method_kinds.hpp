@@ -81,8 +81,7 @@ inline constexpr std::array odeint_members{
                  "Boost.Odeint controlled runge_kutta_fehlberg78, absolute = relative tolerance"},
     named_method{"odeint_bulirsch_stoer",
                  {.control = step_control::controlled, .stepper = odeint_stepper::bulirsch_stoer},
-                 "Boost.Odeint bulirsch_stoer, absolute = relative tolerance",
-                 "its order and step-size history are Boost.Odeint's private state, which a checkpoint cannot hold"},
+                 "Boost.Odeint bulirsch_stoer, absolute = relative tolerance"},
 };
 
 inline constexpr std::array gauss_members{

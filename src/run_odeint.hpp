@@ -13,6 +13,7 @@
 #include <boost/numeric/odeint/util/detail/less_with_sign.hpp>
 #include <sympl/interop/odeint.hpp>
 
+#include "odeint_bulirsch_stoer_state.hpp"
 #include "run_context.hpp"
 
 namespace sympl::app::detail {
@@ -31,10 +32,10 @@ struct odeint_state_of<Eigen::Dynamic> {
 template <int Dim>
 using odeint_state = typename odeint_state_of<Dim>::type;
 
-template <int Dim>
-odeint_state<Dim> to_odeint(const state_of<Dim>& x) {
-    odeint_state<Dim> y{};
-    if constexpr (Dim == Eigen::Dynamic) y.resize(std::size_t(2 * x.size()));
+template <int Dim, class OdeState = odeint_state<Dim>>
+OdeState to_odeint(const state_of<Dim>& x) {
+    OdeState y{};
+    if constexpr (requires { y.resize(std::size_t(0)); }) y.resize(std::size_t(2 * x.size()));
     const auto v = stacked(x);
     std::copy(v.begin(), v.end(), y.begin());
     return y;
@@ -76,7 +77,7 @@ struct odeint_run {
     // of 1e-14 of the span or less, short of t_end, is one the run would
     // never finish with; then the program's observer sees the state.
     auto checking_observer(progress& at) const {
-        return [this, &at](const OdeState& y, double t) {
+        return [this, &at](const auto& y, double t) {
             if (!std::exchange(at.started, true)) {
                 if (observe) (*observe)(std::as_const(x), t0);
                 return;
@@ -97,9 +98,17 @@ struct odeint_run {
         };
     }
 
+    bool checkpointed() const { return observe && rq.checkpoint.every_steps; }
+
     template <class Stepper>
     steps_and_forces run(Stepper stepper, double dt) const {
-        if (observe && rq.checkpoint.every_steps) return run_checkpointed(std::move(stepper), dt);
+        if (checkpointed()) return run_checkpointed(std::move(stepper), dt);
+        return run_whole(std::move(stepper), dt);
+    }
+
+    // Without checkpoints: Odeint's own integrate_adaptive.
+    template <class Stepper>
+    steps_and_forces run_whole(Stepper stepper, double dt) const {
         odeint_workspace<double, Dim> w;
         const auto f = make_odeint_system<Dim>(sys, &w);
         OdeState y = to_odeint<Dim>(x);
@@ -139,8 +148,12 @@ struct odeint_run {
     // the state (first same as last) is evaluated again at the first step
     // after a resume, on the same state: the same bits, counted once. The
     // first observation after a resume is the checkpoint's, not repeated.
+    // bulirsch_stoer's order and step history ride in the carried list too
+    // (odeint_bulirsch_stoer_state.hpp).
     template <class Stepper>
     steps_and_forces run_checkpointed(Stepper stepper, double dt) const {
+        using Y = typename Stepper::state_type;
+        constexpr bool bulirsch_stoer = std::is_same_v<Stepper, bulirsch_stoer_vector>;
         constexpr bool controlled =
             std::is_base_of_v<odeint::controlled_stepper_tag, typename Stepper::stepper_category>;
         constexpr bool fsal = [] {
@@ -151,7 +164,7 @@ struct odeint_run {
         }();
         odeint_workspace<double, Dim> w;
         const auto f = make_odeint_system<Dim>(sys, &w);
-        OdeState y = to_odeint<Dim>(x);
+        Y y = to_odeint<Dim, Y>(x);
         checkpoint_keeper<odeint_run, Stepper> keeper(*this, stepper);
         progress at{.t = t0};
         double t = t0;
@@ -160,11 +173,12 @@ struct odeint_run {
             sympl::detail::carried_reader<double> r{carried, "checkpoint of a Boost.Odeint run"};
             t = r.number(), dt = r.number();
             w.evaluations = std::uint64_t(r.number()) - (fsal ? 1 : 0);
+            if constexpr (bulirsch_stoer) restore_bulirsch_stoer_history(stepper, y.size(), r);
             r.done();
         };
         bool skip = false;  // the next observation is the checkpoint's
         if (const checkpoint_record* from = keeper.restore(restore)) {
-            y = to_odeint<Dim>(to_state<Dim>(from->state));
+            y = to_odeint<Dim, Y>(to_state<Dim>(from->state));
             steps = from->step;
             at = {.started = true, .steps = steps, .t = t};
             skip = true;
@@ -175,7 +189,9 @@ struct odeint_run {
             const bool start = !at.started;
             seen(std::as_const(y), t);
             if (!start) keeper.after_step(to_state<Dim>(y), t, [&] {
-                return std::vector<double>{t, dt, double(w.evaluations)};
+                std::vector<double> carried{t, dt, double(w.evaluations)};
+                if constexpr (bulirsch_stoer) write_bulirsch_stoer_history(stepper, {carried});
+                return carried;
             });
         };
         try {
@@ -239,7 +255,11 @@ steps_and_forces odeint_stepper_run(const odeint_run<Sys, Dim>& r) {
             return r.run(odeint::make_controlled(tol, tol, odeint::runge_kutta_dopri5<OdeState>()), first);
         case odeint_stepper::fehlberg78:
             return r.run(odeint::make_controlled(tol, tol, odeint::runge_kutta_fehlberg78<OdeState>()), first);
-        case odeint_stepper::bulirsch_stoer: return r.run(odeint::bulirsch_stoer<OdeState>(tol, tol), first);
+        case odeint_stepper::bulirsch_stoer:
+            // Its history is read from the std::vector-state stepper only
+            // (odeint_bulirsch_stoer_state.hpp), which gives the same bits.
+            if (r.checkpointed()) return r.run_checkpointed(bulirsch_stoer_vector(tol, tol), first);
+            return r.run_whole(odeint::bulirsch_stoer<OdeState>(tol, tol), first);
     }
     throw invalid_argument("method '" + r.m.name + "': no such Boost.Odeint stepper");
 }

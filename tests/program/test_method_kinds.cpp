@@ -116,11 +116,6 @@ TEST_CASE("method kinds: resumability comes from the registry row, and a refused
         CHECK(r.stable);
         return saved;
     };
-    const auto refused_with = [&](const problem& p, const std::string& name, const char* reason) {
-        CAPTURE(name);
-        CHECK_THROWS_WITH_AS(checkpointed_run(p, name), doctest::Contains(reason), sympl::invalid_argument);
-    };
-    refused_with(pendulum, "odeint_bulirsch_stoer", odeint_members[3].not_resumable);
     for (const char* name : {"leapfrog_kdk", "chin_4a", "rk4", "gauss_4", "dprkn8", "semiexplicit(leapfrog_kdk)",
                              "bcm_2006_p8", "tao(leapfrog_kdk)", "extrapolated(leapfrog_kdk, 2)", "odeint_rk4",
                              "velocity_verlet"}) {
@@ -133,6 +128,59 @@ TEST_CASE("method kinds: resumability comes from the registry row, and a refused
         CAPTURE(name);
         CHECK(checkpointed_run(kepler, name) >= 3);  // fictitious steps of 0.01 over t = 0.1
     }
+}
+
+// odeint_bulirsch_stoer's checkpoints carry what Boost's stepper keeps
+// private between tries (its order, two flags, its proposed step): resumed
+// from any of them, a run gives the bits of one without checkpoints (whose
+// stepper holds its state in a std::array, the resumable one in a
+// std::vector). The same records with the history reset (order 4, first
+// step) resume to other bits: the four numbers are what make it exact.
+TEST_CASE("method kinds: odeint_bulirsch_stoer resumes from any checkpoint to the bits of an uncheckpointed run") {
+    const problem kepler = make_problem("kepler", {{"eccentricity", 0.6}}, {}, {}, "test");
+    const auto run = [&](std::size_t every_steps, const checkpoint_record* resume, std::vector<checkpoint_record>* saved) {
+        run_request rq;
+        rq.tolerance = 1e-9;
+        rq.timing_repeats = 0;
+        rq.checkpoint.every_steps = every_steps;
+        rq.checkpoint.resume = resume;
+        rq.checkpoint.save = [saved](checkpoint_record& r) {
+            if (saved) saved->push_back(r);
+        };
+        const run_result r = kepler.run(*resolve_method("odeint_bulirsch_stoer", {}), rq, 0.0, 60.0, kepler.x0);
+        REQUIRE(r.stable);
+        return r;
+    };
+    const run_result whole = run(0, nullptr, nullptr);
+    REQUIRE(whole.steps > 60);
+    for (const std::size_t every : {std::size_t(1), std::size_t(7)}) {
+        CAPTURE(every);
+        std::vector<checkpoint_record> records;
+        const run_result checkpointed = run(every, nullptr, &records);
+        CHECK(checkpointed.final_state == whole.final_state);
+        CHECK(checkpointed.steps == whole.steps);
+        CHECK(checkpointed.force_evaluations == whole.force_evaluations);
+        REQUIRE(records.size() >= (whole.steps - 1) / every);  // none after the last step
+        std::size_t reset_differs = 0;
+        for (checkpoint_record& record : records) {
+            CAPTURE(record.step);
+            REQUIRE(record.carried.size() == 7);  // t, dt, evaluations, then Boost's four
+            const run_result resumed = run(every, &record, nullptr);
+            CHECK(resumed.final_state == whole.final_state);
+            CHECK(resumed.steps == whole.steps);
+            CHECK(resumed.force_evaluations == whole.force_evaluations);
+            record.carried[3] = 4, record.carried[4] = 1, record.carried[5] = 0;  // what reset() leaves
+            if (run(every, &record, nullptr).final_state != whole.final_state) ++reset_differs;
+        }
+        CHECK(reset_differs > 0);
+    }
+    // A history that is not Boost's is refused by name.
+    std::vector<checkpoint_record> records;
+    run(20, nullptr, &records);
+    REQUIRE_FALSE(records.empty());
+    records[0].carried[3] = 9;
+    CHECK_THROWS_WITH_AS(run(20, &records[0], nullptr), doctest::Contains("bulirsch_stoer order outside 2..7"),
+                         sympl::invalid_argument);
 }
 
 // Odeint's integrate_adaptive drives the Odeint kinds; its observer stops a

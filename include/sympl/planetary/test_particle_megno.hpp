@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "../analysis/chaos_indicator.hpp"
+#include "../core/carried_state.hpp"
 #include "../core/dual.hpp"
 #include "../core/error.hpp"
 #include "kepler_tangent.hpp"
@@ -114,6 +115,38 @@ public:
             }
             for (std::size_t c = 0; c < 3; ++c) dq_[c + 3][i] += t * a[c].grad[0];
         }
+    }
+
+    // What the tangents carry between steps (a checkpoint): on or not, the
+    // time, and per particle the tangent, its scale and MEGNO's sums.
+    void write_carried(detail::carried_writer<S>& w) const {
+        w.flag(started_);
+        w.number(time_);
+        for (const auto& v : dq_) w.numbers(v);
+        w.numbers(log_scale_);
+        w.number(S(megno_.size()));
+        for (const auto& a : megno_) {
+            for (S v : {a.weighted_growth, a.sum_y, a.last_log_norm, a.y}) w.number(v);
+            w.number(S(a.samples));
+        }
+    }
+    void read_carried(detail::carried_reader<S>& r) {
+        started_ = r.flag();
+        time_ = r.number();
+        for (auto& v : dq_) r.numbers(v);
+        r.numbers(log_scale_);
+        const S n = r.number();
+        if (!(n >= S(0)) || S(std::size_t(n)) != n || std::size_t(n) != log_scale_.size())
+            r.refuse("holds a MEGNO count unlike its tangents'");
+        megno_.assign(std::size_t(n), {});
+        for (auto& a : megno_) {
+            for (S* v : {&a.weighted_growth, &a.sum_y, &a.last_log_norm, &a.y}) *v = r.number();
+            const S samples = r.number();
+            if (!(samples >= S(0)) || S(std::size_t(samples)) != samples) r.refuse("holds a bad MEGNO sample count");
+            a.samples = std::size_t(samples);
+        }
+        for (const auto& v : dq_)
+            if (v.size() != megno_.size()) r.refuse("holds tangents of unequal lengths");
     }
 
 private:

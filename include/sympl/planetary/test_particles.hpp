@@ -25,6 +25,7 @@
 
 #include <Eigen/Core>
 
+#include "../core/carried_state.hpp"
 #include "../core/dual.hpp"
 #include "../core/error.hpp"
 #include "coordinates.hpp"
@@ -195,6 +196,35 @@ public:
     void start_megno() { tangent_.start(size()); }
 
     std::uint64_t kepler_fallbacks() const { return fallbacks_; }
+
+    // What the particles carry between steps (wisdom_holman_stepper::carried()):
+    // Q, v and the id of each, and their MEGNO tangents.
+    void write_carried(detail::carried_writer<S>& w) const {
+        for (const auto& v : q_) w.numbers(v);
+        w.number(S(id_.size()));
+        for (std::uint64_t i : id_) w.number(S(i));
+        tangent_.write_carried(w);
+    }
+    void read_carried(detail::carried_reader<S>& r) {
+        for (auto& v : q_) r.numbers(v);
+        read_ids(r, id_);
+        for (const auto& v : q_)
+            if (v.size() != id_.size()) r.refuse("holds test particles of unequal lengths");
+        tangent_.read_carried(r);
+        if (tangent_.started() && tangent_.megno().size() != id_.size())
+            r.refuse("holds MEGNO tangents for another number of test particles");
+    }
+    // Ids as carried numbers (exact below 2^53).
+    static void read_ids(detail::carried_reader<S>& r, std::vector<std::uint64_t>& id) {
+        const S n = r.number();
+        if (!(n >= S(0)) || S(std::size_t(n)) != n) r.refuse("holds a bad number of test particles");
+        id.resize(std::size_t(n));
+        for (auto& i : id) {
+            const S v = r.number();
+            if (!(v >= S(0) && v < S(9007199254740992.0)) || S(std::uint64_t(v)) != v) r.refuse("holds a bad particle id");
+            i = std::uint64_t(v);
+        }
+    }
 
     // The particles' Q, v (by id()), and the star's and planets' positions
     // and velocities dQ/dt in the particles' frame, so that differences are

@@ -164,8 +164,8 @@ public:
     // What the stepper carries between calls: its own coordinates and last
     // forces, the state it returned last and the dt of its C^-1. A stepper of
     // the same masses, G, table and options given restore_carried(carried())
-    // and handed that state goes on bit for bit (a checkpoint; MEGNO's
-    // tangent is not carried).
+    // and handed that state goes on bit for bit (a checkpoint), test
+    // particles and their MEGNO included (the planets' MEGNO tangent is not carried).
     std::vector<scalar> carried() const {
         std::vector<scalar> out;
         detail::carried_writer<scalar> w{out};
@@ -174,6 +174,11 @@ public:
         w.numbers(last_.q);
         w.numbers(last_.p);
         visit([&](const auto& f) { f.write_carried(w); });
+        // The test particles: as of the last return (inertial) and in the flows.
+        for (const auto* v : particles_.parts()) w.numbers(*v);
+        w.number(scalar(particles_.id.size()));
+        for (std::uint64_t i : particles_.id) w.number(scalar(i));
+        std::visit([&](const auto& p) { p.write_carried(w); }, particle_flows_);
         return out;
     }
     void restore_carried(std::span<const scalar> values) {
@@ -187,8 +192,17 @@ public:
             r.refuse("holds a state of another size than the bodies'");
         flows_type flows = flows_;  // the stepper untouched by a list that does not fit
         std::visit([&](auto& f) { f.read_carried(r); }, flows);
+        test_particle_set<scalar> particles;
+        for (auto* v : particles.parts()) r.numbers(*v);
+        test_particle_flows<scalar, democratic_heliocentric_coordinates<scalar>>::read_ids(r, particles.id);
+        for (const auto* v : particles.parts())
+            if (v->size() != particles.id.size()) r.refuse("holds test particles of unequal lengths");
+        particle_flows_type particle_flows = particle_flows_;
+        std::visit([&](auto& p) { p.read_carried(r); }, particle_flows);
         r.done();
         flows_ = std::move(flows);
+        particles_ = std::move(particles);
+        particle_flows_ = std::move(particle_flows);
         loaded_ = loaded;
         corrected_dt_ = corrected_dt;
         last_ = std::move(last);
