@@ -42,7 +42,9 @@ struct checkpoint_record {
     std::uint64_t trajectory_bytes = 0;
 };
 
-inline constexpr int checkpoint_format = 2;
+// 3: a wh(...) run's carried list holds its test particles and their MEGNO
+// state, and odeint_bulirsch_stoer's Boost's order and step history.
+inline constexpr int checkpoint_format = 3;
 
 // FNV-1a, 64 bits, as 16 hex digits: the scene's identity and the file's checksum.
 std::string fnv1a_hex(const std::string& bytes);
