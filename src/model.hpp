@@ -136,10 +136,21 @@ private:
         for (double v : x0) size0 = std::max(size0, std::fabs(v));
         const bool timed = !rq.output_times.empty();
         timed_rows<Sys, State> rows(sys_, rq);
+        // H as the problem's energy computes it, on a dynamic state (the same
+        // bits), without its conversion and allocations at every step.
+        phase_space<double> held = from_stacked<phase_space<double>>(x0);
+        const auto energy_of = [&](const State& x) {
+            if constexpr (requires { sympl::energy(sys_, held); }) {
+                held.q = x.q, held.p = x.p;
+                return double(sympl::energy(sys_, held));
+            } else {
+                return energy_(stacked(x));
+            }
+        };
         const auto observe = [&](const State& x, double t) {
-            if (energy || rq.energy_series_every || rq.trajectory_every) buffer = stacked(x);
+            if (rq.trajectory && rq.trajectory_every && step % rq.trajectory_every == 0) buffer = stacked(x);
             if (energy) {
-                const double err = std::fabs(energy_(buffer) - e0) / scale;
+                const double err = std::fabs(energy_of(x) - e0) / scale;
                 // A finite but exploding run is unstable too: report where, not a huge number.
                 if (err > divergence_limit)
                     diverged("relative energy error " + format_number(err, 3) + " > " + format_number(divergence_limit),

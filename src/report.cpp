@@ -17,6 +17,7 @@
 #include "timing.hpp"
 #include "writers.hpp"
 
+#include <sympl/parallel/ensemble.hpp>
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -133,20 +134,25 @@ void write_report(const std::vector<scene>& scenes, const std::vector<run_plan>&
         plot_work_precision(rows, plans, dir, error_measure::final_error);
         plot_work_precision(rows, plans, dir, error_measure::energy_error);
     }
-    energy_series_study(scenes, rows, dir, plots, md);
+    // The energy series and the fixed studies side by side on the threads,
+    // each into its own part of summary.md, appended in this order.
+    using study = void (*)(const study_context&);
+    const std::vector<study> studies = options.studies ? std::vector<study>{stability_study, kepler_099_study,
+                                                                            long_run_study, extreme_study,
+                                                                            energy_long_span_study}
+                                                       : std::vector<study>{};
+    std::vector<std::ostringstream> parts(1 + studies.size());
+    for_each_in_parallel(parts.size(), options.threads, [&](std::size_t k) {
+        if (k == 0) energy_series_study(scenes, rows, dir, plots, parts[0]);
+        else studies[k - 1](study_context{options.quick, parts[k], dir, bar});
+    });
+    md << parts[0].str();
     for (const ensemble_outcome& e : ensembles) {
         md << e.summary;
         table << e.scene_name << ": " << e.trajectories << " trajectories, " << e.chaotic << " chaotic, " << e.invalid
               << " invalid\n";
     }
-    if (options.studies) {
-        const study_context c{options.quick, md, dir, bar};
-        stability_study(c);
-        kepler_099_study(c);
-        long_run_study(c);
-        extreme_study(c);
-        energy_long_span_study(c);
-    }
+    for (std::size_t k = 1; k < parts.size(); ++k) md << parts[k].str();
     phases.lap("tables, figures and studies");
     const int threads = threads_used(options.threads);
     md << "## Where the time went\n\nWall time of this report's phases on " << threads << " thread"
