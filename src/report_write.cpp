@@ -140,12 +140,15 @@ void plot_work_precision(const std::vector<report_row>& rows, const std::vector<
             if (points == 0) d->stream() << "NaN NaN\n";
             d->stream() << "\n\n";
         }
-        std::string title = s.name;
+        // The title as gnuplot string expressions: every name inside single
+        // quotes (gnuplot_string), the line break the only text between them,
+        // so no scene or table name can end the string and add a command.
+        std::string title = gnuplot_string(s.name);
         if (const auto level = shared_level(rows, s, by))
-            title += "\\nfastest at " + format_number(*level) + ": " +
-                     fastest(rows, s, *level, false, by).method->name + " (sympl), " +
-                     fastest(rows, s, *level, true, by).method->name + " (Odeint)";
-        gp.stream() << "set title \"" << title << "\" noenhanced\nplot ";
+            title += ".\"\\n\"." + gnuplot_string("fastest at " + format_number(*level) + ": " +
+                                                  fastest(rows, s, *level, false, by).method->name + " (sympl), " +
+                                                  fastest(rows, s, *level, true, by).method->name + " (Odeint)");
+        gp.stream() << "set title " << title << " noenhanced\nplot ";
         for (std::size_t i = 0; i < s.methods.size(); ++i) {
             const bool odeint = entry_of(s.methods[i].kind).odeint;
             gp.stream() << (i ? ", " : "") << gnuplot_string(data) << " index " << i << " with linespoints lw 1.6 dt "

@@ -14,6 +14,7 @@
 #include "scratch_directory.hpp"
 #include "report.hpp"
 #include "scene.hpp"
+#include "writers.hpp"
 
 namespace test_program_test_report {  // one per file: the tests build in batches (CMakeLists.txt)
 
@@ -91,6 +92,38 @@ t_end = 30
     }
     REQUIRE(measured[1].size() == 1 + 2 * 3 + 2 * 2);  // two methods over 3 steps, two over 2 tolerances
     CHECK(measured[1] == measured[2]);
+}
+
+TEST_CASE("report: a scene name that closes a quote reaches gnuplot as text, never as a command") {
+    // The figures' titles carry the scene's name and the fastest methods'
+    // names: inside gnuplot's quotes, so that a name cannot end the string
+    // and run `system` (which would hand the rest to a shell).
+    const fs::path dir = scratch_directory("sympl_test_report_hostile");
+    fs::remove_all(dir);
+    const fs::path sentinel = dir.parent_path() / "sympl_test_report_hostile_sentinel";
+    fs::remove(sentinel);
+    const std::string hostile = "x\" noenhanced; system \"touch " + sentinel.string() + "\"; set title \"y'z";
+    const std::string quotes = "\x27\x27\x27";  // a TOML literal string takes the name as it is
+    const scene s = parse_scene("name = " + quotes + hostile + quotes + R"(
+system = "pendulum"
+methods = ["leapfrog_kdk", "odeint_rk4"]
+dt = {from = 0.2, to = 0.05, count = 3}
+t_end = 10
+)",
+                                "hostile.toml");
+    REQUIRE(s.name == hostile);
+    std::ostringstream out;
+    run_report({s}, {dir.string(), true, false, true}, out);
+    if (have_gnuplot()) {
+        const std::string gp = (std::stringstream() << std::ifstream(dir / "work_precision.gp").rdbuf()).str();
+        const auto title = gp.find("set title ");
+        REQUIRE(title != std::string::npos);
+        CHECK(gp.compare(title, 12, "set title 'x") == 0);  // the name opens a single-quoted string
+        CHECK(fs::exists(dir / "work_precision.png"));
+    }
+    CHECK(!fs::exists(sentinel));
+    fs::remove(sentinel);
+    fs::remove_all(dir);
 }
 
 TEST_CASE("report: an unstable run is reported with its step and time, never as a number") {
