@@ -60,12 +60,16 @@ std::optional<std::size_t> classic_index(const std::string& name) {
     return std::nullopt;
 }
 
-// "did you mean 'yoshida_6'? " for a table name that is none: the nearest of
-// the catalog's tables and the scene's own, or "".
-std::string nearest_table(const std::string& given, const std::map<std::string, table>& inline_tables) {
+// The catalog's tables and the scene's own, by name.
+std::vector<std::string> table_names(const std::map<std::string, table>& inline_tables) {
     std::vector<std::string> names = catalog_names();
     for (const auto& entry : inline_tables) names.push_back(entry.first);
-    return did_you_mean(given, names);
+    return names;
+}
+
+// "did you mean 'yoshida_6'? " for a table name that is none, or "".
+std::string nearest_table(const std::string& given, const std::map<std::string, table>& inline_tables) {
+    return did_you_mean(given, table_names(inline_tables));
 }
 
 std::string trimmed(const std::string& s) {
@@ -226,9 +230,7 @@ std::string did_you_mean_method(const std::string& name, const std::map<std::str
     for (const std::string prefix : {"logh(", "compensated("}) {
         if (name.size() <= prefix.size() || name.rfind(prefix, 0) != 0 || name.back() != ')') continue;
         const std::string inner = trimmed(name.substr(prefix.size(), name.size() - prefix.size() - 1));
-        std::vector<std::string> names = catalog_names();
-        for (const auto& entry : inline_tables) names.push_back(entry.first);
-        const std::vector<std::string> near = near_names(inner, names);
+        const std::vector<std::string> near = near_names(inner, table_names(inline_tables));
         if (near.empty()) return "";
         return "did you mean '" + prefix + near.front() + ")'? ";
     }
