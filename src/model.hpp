@@ -311,6 +311,10 @@ problem model(Sys sys, std::vector<double> x0, std::function<std::vector<double>
         p.degrees_of_freedom = x0.size() / 2;
         p.x0 = std::move(x0);
         p.exact = std::move(exact);
+        if constexpr (detail::form_of<Sys>().planetary) {
+            for (const auto& m : sys.mass) p.masses.push_back(double(m));
+            p.G = double(sys.G);
+        }
         if constexpr (separable_hamiltonian<Sys, V>)
             detail::add_hamiltonian_parts<Dim>(p, sys);
         else if constexpr (general_hamiltonian<Sys, V>)

@@ -96,6 +96,11 @@ struct problem {
     std::vector<double> x0;  // q then p
     // Exact state at time t (from x0 at t0 = 0); empty when there is none.
     std::function<std::vector<double>(double t)> exact;
+    // A planetary system's masses (star first) and G, which a Wisdom-Holman
+    // run of test particles needs beside x0 (test_particle_run.hpp); empty
+    // and 0 for any other system.
+    std::vector<double> masses;
+    double G = 0;
     std::function<double(const std::vector<double>&)> energy;  // empty when not Hamiltonian
     std::function<run_result(const method_spec&, const run_request&, double t0, double t_end,
                              const std::vector<double>& x0)>
