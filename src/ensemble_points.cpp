@@ -2,10 +2,10 @@
 #include "ensemble_points.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <fstream>
 
+#include "csv_numbers.hpp"
 #include "format.hpp"
 #include "run_plan.hpp"
 
@@ -48,20 +48,7 @@ std::vector<std::vector<double>> read_states(const std::string& path, std::size_
             continue;
         }
         if (line.empty()) continue;
-        std::vector<double> x;
-        std::size_t start = 0;
-        while (true) {
-            const std::size_t comma = line.find(',', start);
-            const std::string field = line.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
-            double v = 0;
-            const auto [end, ec] = std::from_chars(field.data(), field.data() + field.size(), v);
-            if (ec != std::errc() || end != field.data() + field.size() || field.empty() || !std::isfinite(v))
-                throw scene_error(where + "field " + std::to_string(x.size() + 1) + " '" + field +
-                                  "'; expected a finite number");
-            x.push_back(v);
-            if (comma == std::string::npos) break;
-            start = comma + 1;
-        }
+        std::vector<double> x = csv_numbers(line, where);
         if (x.size() != 2 * dof)
             throw scene_error(where + std::to_string(x.size()) + " numbers; expected " + std::to_string(2 * dof) +
                               " (q1..q" + std::to_string(dof) + ", p1..p" + std::to_string(dof) + ")");
