@@ -3,6 +3,7 @@
 //   sympl systems [--json]           every system, its parameters and the method kinds
 //   sympl check-table --kick ... --drift ... [--convention ...] [--json]
 //   sympl run SCENE.toml [--json]    one scene: summary and the outputs it asks for
+//   sympl run SCENE [--out DIR] [--threads N]   a scene's [test_particles] (a file or a built-in name)
 //   sympl report [SCENE.toml ...] [--out DIR] [--quick] [--threads N]   the work-precision study
 //   sympl ensemble SCENE.toml [--out DIR] [--threads N]   a scene's [ensemble]
 // Invalid input: exit code 2 and one line on stderr.
@@ -26,6 +27,7 @@
 #include "report.hpp"
 #include "run_scene.hpp"
 #include "scene.hpp"
+#include "test_particle_run.hpp"
 
 namespace {
 
@@ -47,6 +49,7 @@ struct command_line {
     std::vector<std::string> report_files;
     report_options report_settings;
     std::string ensemble_out = "sympl-ensemble";
+    std::string run_out = "sympl-test-particles";
     int threads = 0;
 };
 
@@ -70,7 +73,11 @@ void add_listings(CLI::App& app, command_line& c) {
 
 void add_runs(CLI::App& app, command_line& c) {
     c.run = app.add_subcommand("run", "Run one scene file and print its summary");
-    c.run->add_option("scene", c.scene_file, "scene file (TOML)")->required();
+    c.run->add_option("scene", c.scene_file, "scene file (TOML), or a built-in scene's name")->required();
+    c.run->add_option("--out", c.run_out, "output directory of a [test_particles] scene (default sympl-test-particles)");
+    c.run->add_option("--threads", c.threads,
+                      "threads of a [test_particles] scene (default: OMP_NUM_THREADS, else every core)")
+        ->check(CLI::Range(1, 1024));
     c.run->add_flag("--json", c.json, "JSON output");
     add_max_steps(c.run, c.max_steps);
     c.run->add_flag("--resume", c.resume, "continue from the scene's checkpoints (checkpoint = {every_steps, file})");
@@ -96,6 +103,21 @@ void add_runs(CLI::App& app, command_line& c) {
                          "at any rank and thread count");
 }
 
+// `sympl run`: a scene's methods, or its [test_particles] map (files in --out).
+void run_one(const command_line& c) {
+    const scene s = load_scene(c.scene_file);
+    if (!s.test_particles) {
+        if (c.run->count("--out") || c.run->count("--threads"))
+            throw sympl::error("--out and --threads are for a scene with [test_particles]; " + s.source +
+                               " has none (its outputs go to output.directory)");
+        return run_scene(s, c.json, std::cout, c.max_steps, c.resume);
+    }
+    if (c.json || c.resume)
+        throw sympl::error(s.source + " has [test_particles]: its run writes files in --out; expected neither --json "
+                                      "nor --resume");
+    test_particles_command(s, c.run_out, c.threads, c.max_steps, std::cout);
+}
+
 // The chosen command; its exit code.
 int dispatch(command_line& c, exchange& ranks) {
     if (*c.tables) print_tables(c.json);
@@ -104,7 +126,7 @@ int dispatch(command_line& c, exchange& ranks) {
     if (*c.ensemble || *c.report) ranks = process_exchange();
     if (*c.ensemble)
         ensemble_command(load_scene(c.scene_file), c.ensemble_out, c.threads, c.max_steps, ranks, std::cout, c.resume);
-    if (*c.run) run_scene(load_scene(c.scene_file), c.json, std::cout, c.max_steps, c.resume);
+    if (*c.run) run_one(c);
     if (*c.report) {
         std::vector<scene> scenes;
         for (const auto& f : c.report_files) scenes.push_back(load_scene(f, c.report_settings.quick));

@@ -283,7 +283,7 @@ scene parse_scene(const std::string& text, const std::string& source, bool quick
         r.fail(e.source(), "not valid TOML: " + std::string(e.description()));
     }
     r.only_keys(doc, {"name", "system", "parameters", "initial", "methods", "table", "dt", "tolerances", "t0", "t_end",
-                      "output", "quick", "checkpoint", "ensemble"},
+                      "output", "quick", "checkpoint", "ensemble", "test_particles"},
                 "the scene");
     // [quick]: what `--quick` changes (a shorter span, a shorter sweep).
     const toml::table* quick_table = nullptr;
@@ -333,13 +333,19 @@ scene parse_scene(const std::string& text, const std::string& source, bool quick
                        "checkpoint; expected one of them");
     }
     if (const toml::node* e = doc.get("ensemble")) s.ensemble = read_ensemble(r, *e, s, *find_system(s.system), methods);
+    if (const toml::node* tp = doc.get("test_particles")) s.test_particles = read_test_particles(r, *tp, s, methods);
     r.throw_unknown();
     return s;
 }
 
 scene load_scene(const std::string& path, bool quick) {
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw scene_error(path + ": cannot open the scene file");
+    if (!in) {
+        // Not a file: a built-in scene by name (those the report leaves out run so).
+        if (path.find('/') == std::string::npos)
+            if (std::optional<scene> s = builtin_scene(path, quick)) return *s;
+        throw scene_error(path + ": cannot open the scene file (nor is it a built-in scene's name)");
+    }
     // Read at most one byte past the limit: /dev/zero or a huge file is refused
     // without being read into memory.
     std::string text(max_scene_bytes + 1, '\0');
@@ -356,8 +362,25 @@ scene load_scene(const std::string& path, bool quick) {
 
 std::vector<scene> default_scenes(bool quick) {
     std::vector<scene> scenes;
-    for (const auto& [file, text] : builtin_scene_texts()) scenes.push_back(parse_scene(text, "built-in:" + file, quick));
+    for (const auto& [file, text] : builtin_scene_texts()) {
+        scene s = parse_scene(text, "built-in:" + file, quick);
+        if (!s.test_particles) scenes.push_back(std::move(s));
+    }
     return scenes;
+}
+
+std::optional<scene> builtin_scene(const std::string& name, bool quick) {
+    for (const auto& [file, text] : builtin_scene_texts()) {
+        std::string bare = file.ends_with(".toml") ? file.substr(0, file.size() - 5) : file;
+        const std::size_t underscore = bare.find('_');
+        const std::string unnumbered = underscore != std::string::npos && underscore > 0 &&
+                                               std::all_of(bare.begin(), bare.begin() + std::ptrdiff_t(underscore),
+                                                           [](char c) { return c >= '0' && c <= '9'; })
+                                           ? bare.substr(underscore + 1)
+                                           : bare;
+        if (name == file || name == bare || name == unnumbered) return parse_scene(text, "built-in:" + file, quick);
+    }
+    return std::nullopt;
 }
 
 }  // namespace sympl::app

@@ -80,6 +80,22 @@ struct ensemble_spec {
 };
 inline constexpr double max_ensemble_size = 1e7;
 
+// `[test_particles]`: massless bodies run with the planets by the scene's one
+// wh(...) method, MEGNO per particle (test_particle_run.hpp): a grid over the
+// semi-major axis a [AU] and eccentricity e, the angles fixed, or a CSV of
+// orbital elements (a, e, then optionally inclination, node, pericentre,
+// mean_anomaly; angles in degrees) about the star.
+struct test_particle_spec {
+    ensemble_axis a{"a"}, e{"e"};  // a grid (a varying fastest); unused with elements_file
+    double inclination = 0, node = 0, pericentre = 0, mean_anomaly = 0;  // degrees
+    std::string elements_file;  // relative to the scene file; empty: the grid
+    bool megno = true;          // indicator = "megno" (or "none")
+    std::size_t grid_size() const { return a.count * e.count; }
+};
+// A population larger than this is refused before anything runs (each
+// particle is 6 numbers and, with MEGNO, 12 more: 1e6 of them is ~150 MB).
+inline constexpr double max_test_particles = 1e6;
+
 struct scene {
     std::string source;  // file path, or "built-in"
     std::string text_hash;  // of the scene file's text: what a checkpoint belongs to
@@ -96,6 +112,7 @@ struct scene {
     output_spec output;
     checkpoint_spec checkpoint;
     std::optional<ensemble_spec> ensemble;
+    std::optional<test_particle_spec> test_particles;
 };
 
 // A scene file that cannot be read: "file:line:column: what; expected ...".
@@ -114,8 +131,13 @@ scene load_scene(const std::string& path, bool quick = false);
 // (`--max-steps` raises it): about a minute of leapfrog on a small system.
 inline constexpr double default_max_steps = 1e9;
 
-// The built-in scenes: the TOML files of src/scenes/, compiled in.
+// The built-in scenes: the TOML files of src/scenes/, compiled in; those
+// with [test_particles] (a stability map, not a method comparison) are left
+// out of this set, which the report runs, and run by name (builtin_scene).
 std::vector<scene> default_scenes(bool quick);
+// A built-in scene by its file name, with or without ".toml" and the
+// leading "NN_" ("outer_belt_megno"); nullopt when there is none.
+std::optional<scene> builtin_scene(const std::string& name, bool quick = false);
 
 // Their texts, by file name (generated from src/scenes/ at build time).
 const std::vector<std::pair<std::string, std::string>>& builtin_scene_texts();

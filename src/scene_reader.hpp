@@ -163,4 +163,9 @@ struct reader {
 ensemble_spec read_ensemble(const reader& r, const toml::node& node, const scene& s, const system_entry& entry,
                             const toml::array& methods);
 
+// [test_particles]: a grid of orbital elements or a CSV of them, with the
+// planets of a planetary system and one wh(...) method.
+test_particle_spec read_test_particles(const reader& r, const toml::node& node, const scene& s,
+                                       const toml::array& methods);
+
 }  // namespace sympl::app

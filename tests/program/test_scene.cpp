@@ -69,7 +69,7 @@ TEST_CASE("scene: errors name the file, line and column and what was expected") 
     };
     CHECK(error_of(replace(good, "t_end = 6.283185307179586", "t_end = 6.2\nstep = 3")) ==
           "scene.toml:7:8: unknown key 'step' in the scene; expected one of: checkpoint, dt, ensemble, initial, methods, name, "
-          "output, parameters, quick, system, t0, t_end, table, tolerances");
+          "output, parameters, quick, system, t0, t_end, table, test_particles, tolerances");
     CHECK(error_of(replace(good, "\"kepler\"\nparameters", "\"kepplr\"\nparameters")).rfind("scene.toml:2:10: unknown system 'kepplr'", 0) == 0);
     CHECK(error_of(replace(good, "\"rk4\"", "\"rk5\"")).rfind("scene.toml:4:36: unknown method 'rk5'", 0) == 0);
     CHECK(error_of(replace(good, "trajectory_every = 10", "trajectory_every = \"often\"")) ==
