@@ -34,6 +34,7 @@
 #include "kepler_lanes.hpp"
 #include "kernels.hpp"
 #include "split_coordinates.hpp"
+#include "test_particle_field.hpp"
 #include "test_particle_megno.hpp"
 
 namespace sympl {
@@ -82,21 +83,13 @@ template <class S, class Coordinates>
 class test_particle_flows {
 public:
     static constexpr bool jacobi = std::is_same_v<Coordinates, jacobi_coordinates<S>>;
-    static constexpr std::size_t block = 64;  // particles per block of a kick
+    using field_type = test_particle_field<S, jacobi>;
+    static constexpr std::size_t block = field_type::block;  // particles per block of a kick
     using dual_t = dual<S, 1>;
 
     test_particle_flows(const std::vector<double>& mass, double G)
-        : mass_(mass), coords_(mass, G), G_(S(G)), gm0_(S(G) * S(mass[0])) {
-        const std::vector<double> eta = interior_masses(mass_);
-        for (std::size_t i = 1; i < mass_.size(); ++i) {
-            eta_.push_back(S(eta[i - 1]));
-            gm_.push_back(S(G) * S(mass_[0]) * (S(eta[i]) / S(eta[i - 1])));
-        }
+        : mass_(mass), coords_(mass, G), field_(mass, G), gm0_(S(G) * S(mass[0])) {
         for (double m : mass_) total_mass_ += S(m);
-        // The bodies a particle feels besides its Kepler term: the planets
-        // (democratic heliocentric), or every body (Jacobi).
-        for (std::size_t k = jacobi ? 0 : 1; k < mass_.size(); ++k) source_gm_.push_back(S(G) * S(mass_[k]));
-        for (auto* v : {&sx_, &sy_, &sz_, &dsx_, &dsy_, &dsz_}) v->assign(source_gm_.size(), S(0));
         for (auto* v : {&pax_, &pay_, &paz_}) v->assign(mass_.size() - 1, S(0));
     }
 
@@ -158,9 +151,9 @@ public:
     void kick(const Planets& p, S t) {
         if (size() == 0) return;
         if constexpr (!jacobi) jump(p, t);
-        sources(p[0].data(), p[1].data(), p[2].data(), sx_, sy_, sz_);
+        field_.place(p[0].data(), p[1].data(), p[2].data(), 0);
         if (tangent_.on()) tangent_kick(t, S(0));
-        accelerate(q_[0].data(), q_[1].data(), q_[2].data(), sx_, sy_, sz_, t);
+        accelerate(q_[0].data(), q_[1].data(), q_[2].data(), 0, t);
     }
 
     // The lazy implementer's kernel (Wisdom, Holman & Touma 1996, eq. 10.6;
@@ -174,16 +167,16 @@ public:
         coords_.accelerations(p[0].data(), p[1].data(), p[2].data(), pax_.data(), pay_.data(), paz_.data());
         for (std::size_t i = 0; i < n; ++i)
             pax_[i] = p[0][i] + d * pax_[i], pay_[i] = p[1][i] + d * pay_[i], paz_[i] = p[2][i] + d * paz_[i];
-        sources(p[0].data(), p[1].data(), p[2].data(), sx_, sy_, sz_);
-        sources(pax_.data(), pay_.data(), paz_.data(), dsx_, dsy_, dsz_);
+        field_.place(p[0].data(), p[1].data(), p[2].data(), 0);
+        field_.place(pax_.data(), pay_.data(), paz_.data(), 1);
         if (tangent_.on()) tangent_kick(t, h);
         for (std::size_t c = 0; c < 3; ++c) moved_[c] = q_[c], lazy_a_[c].resize(size());
         for (std::size_t first = 0; first < size(); first += block)
-            field(q_[0].data(), q_[1].data(), q_[2].data(), sx_, sy_, sz_, lazy_a_[0].data() + first,
-                  lazy_a_[1].data() + first, lazy_a_[2].data() + first, first, std::min(size(), first + block));
+            field_.at(q_[0].data(), q_[1].data(), q_[2].data(), lazy_a_[0].data() + first, lazy_a_[1].data() + first,
+                      lazy_a_[2].data() + first, first, std::min(size(), first + block), 0);
         for (std::size_t c = 0; c < 3; ++c)
             for (std::size_t i = 0; i < size(); ++i) moved_[c][i] += d * lazy_a_[c][i];
-        accelerate(moved_[0].data(), moved_[1].data(), moved_[2].data(), dsx_, dsy_, dsz_, t);
+        accelerate(moved_[0].data(), moved_[1].data(), moved_[2].data(), 1, t);
     }
 
     // The state around the corrector (the tangent is paused there).
@@ -227,27 +220,12 @@ public:
     }
 
     // The particles' Q, v (by id()), and the star's and planets' positions
-    // and velocities dQ/dt in the particles' frame, so that differences are
-    // separations and their rates: democratic heliocentric, the star at 0
-    // moving at -sum_j m_j v_j / m_0 (the jump's velocity, which every Q
-    // shares), the planets at Q_j with v_j; Jacobi, every body's x_j - X_N
-    // and its rate from the planets' Q_i and v_i (jacobi_centred_positions).
+    // and velocities in the particles' frame (test_particle_field::bodies).
     const std::array<std::vector<S>, 6>& state() const { return q_; }
     const std::vector<std::uint64_t>& id() const { return id_; }
     template <class Planets>
     void bodies(const Planets& p, std::array<std::vector<S>, 6>& b) const {
-        const std::size_t n = p[0].size();
-        for (auto& v : b) v.assign(n + 1, S(0));
-        if constexpr (jacobi) {
-            const jacobi_constants<S> c{std::span<const double>(mass_), eta_.data(), gm_.data(), G_};
-            jacobi_centred_positions(c, p[0].data(), p[1].data(), p[2].data(), b[0].data(), b[1].data(), b[2].data());
-            jacobi_centred_positions(c, p[3].data(), p[4].data(), p[5].data(), b[3].data(), b[4].data(), b[5].data());
-        } else {
-            for (std::size_t c = 0; c < 6; ++c)
-                for (std::size_t i = 0; i < n; ++i) b[c][i + 1] = p[c][i];
-            for (std::size_t i = 0; i < n; ++i)
-                for (std::size_t c = 3; c < 6; ++c) b[c][0] -= S(mass_[i + 1]) * p[c][i] / S(mass_[0]);
-        }
+        field_.bodies(p, b);
     }
     // Removes the particles with gone[i] set, keeping the others' order.
     void remove(const std::vector<char>& gone) {
@@ -289,70 +267,12 @@ private:
         for (std::size_t i = 0; i < size(); ++i) q_[0][i] += s * px, q_[1][i] += s * py, q_[2][i] += s * pz;
     }
 
-    // The sources' positions in the particles' frame from the planets' positions.
-    void sources(const S* x, const S* y, const S* z, std::vector<S>& sx, std::vector<S>& sy,
-                 std::vector<S>& sz) const {
-        if constexpr (jacobi) {
-            const jacobi_constants<S> c{std::span<const double>(mass_), eta_.data(), gm_.data(), G_};
-            jacobi_centred_positions(c, x, y, z, sx.data(), sy.data(), sz.data());
-        } else {
-            for (std::size_t k = 0; k < sx.size(); ++k) sx[k] = x[k], sy[k] = y[k], sz[k] = z[k];
-        }
-    }
-
-    // The accelerations of particles first..last at (x, y, z) into (ax, ay, az)
-    // (from index first): sum_k G m_k (s_k - Q) / |s_k - Q|^3, and in Jacobi
-    // coordinates + G m_0 Q / |Q|^3. Source by source over a block, so that the
-    // loops over particles vectorise.
-    template <class T>
-    void field(const T* x, const T* y, const T* z, const std::vector<S>& sx, const std::vector<S>& sy,
-               const std::vector<S>& sz, T* ax, T* ay, T* az, std::size_t first, std::size_t last) const {
-        const std::size_t m = last - first;
-        T r2[block], r[block];
-        for (std::size_t l = 0; l < m; ++l) ax[l] = ay[l] = az[l] = T(0);
-        for (std::size_t k = 0; k < source_gm_.size(); ++k) {
-            for (std::size_t l = 0; l < m; ++l) {
-                const T dx = sx[k] - x[first + l], dy = sy[k] - y[first + l], dz = sz[k] - z[first + l];
-                r2[l] = dx * dx + dy * dy + dz * dz;
-            }
-            square_roots(r2, r, m);
-            for (std::size_t l = 0; l < m; ++l) {
-                const T f = source_gm_[k] / (r2[l] * r[l]);
-                ax[l] += f * (sx[k] - x[first + l]), ay[l] += f * (sy[k] - y[first + l]),
-                    az[l] += f * (sz[k] - z[first + l]);
-            }
-        }
-        if constexpr (jacobi) {
-            for (std::size_t l = 0; l < m; ++l)
-                r2[l] = x[first + l] * x[first + l] + y[first + l] * y[first + l] + z[first + l] * z[first + l];
-            square_roots(r2, r, m);
-            for (std::size_t l = 0; l < m; ++l) {
-                const T f = gm0_ / (r2[l] * r[l]);
-                ax[l] += f * x[first + l], ay[l] += f * y[first + l], az[l] += f * z[first + l];
-            }
-        }
-    }
-
-    // r = sqrt(r2) over m values: for S by Eigen's packet square root, which
-    // vectorises (std::sqrt's loop does not: it keeps a branch to set errno).
-    template <class T>
-    static void square_roots(const T* r2, T* r, std::size_t m) {
-        if constexpr (std::is_same_v<T, S>) {
-            using array = Eigen::Array<S, Eigen::Dynamic, 1>;
-            Eigen::Map<array>(r, Eigen::Index(m)) = Eigen::Map<const array>(r2, Eigen::Index(m)).sqrt();
-        } else {
-            using std::sqrt;
-            for (std::size_t l = 0; l < m; ++l) r[l] = sqrt(r2[l]);
-        }
-    }
-
     // v += t a(x, y, z), block by block (x may be the lazy kernel's moved positions).
-    void accelerate(const S* x, const S* y, const S* z, const std::vector<S>& sx, const std::vector<S>& sy,
-                    const std::vector<S>& sz, S t) {
+    void accelerate(const S* x, const S* y, const S* z, int sources, S t) {
         S ax[block], ay[block], az[block];
         for (std::size_t first = 0; first < size(); first += block) {
             const std::size_t last = std::min(size(), first + block);
-            field(x, y, z, sx, sy, sz, ax, ay, az, first, last);
+            field_.at(x, y, z, ax, ay, az, first, last, sources);
             for (std::size_t l = 0; l < last - first; ++l)
                 q_[3][first + l] += t * ax[l], q_[4][first + l] += t * ay[l], q_[5][first + l] += t * az[l];
         }
@@ -364,16 +284,15 @@ private:
     void tangent_kick(S t, S lazy_h) {
         tangent_.kick(q_, t, static_cast<S>(lazy_kernel_displacement) * lazy_h * lazy_h,
                       [this](const dual_t* x, dual_t* a, bool moved) {
-                          field(&x[0], &x[1], &x[2], moved ? dsx_ : sx_, moved ? dsy_ : sy_, moved ? dsz_ : sz_,
-                                &a[0], &a[1], &a[2], 0, 1);
+                          field_.at(&x[0], &x[1], &x[2], &a[0], &a[1], &a[2], 0, 1, moved ? 1 : 0);
                       });
     }
 
     std::vector<double> mass_;
     Coordinates coords_;  // the planets' accelerations for the lazy kernel
-    S G_, gm0_, total_mass_ = 0;
-    std::vector<S> eta_, gm_, source_gm_;
-    std::vector<S> sx_, sy_, sz_, dsx_, dsy_, dsz_, pax_, pay_, paz_;
+    field_type field_;
+    S gm0_, total_mass_ = 0;
+    std::vector<S> pax_, pay_, paz_;
     std::array<std::vector<S>, 6> q_;  // Q, v per particle
     std::vector<std::uint64_t> id_;
     std::array<std::vector<S>, 3> moved_, lazy_a_;  // the lazy kernel's moved positions, their displacement

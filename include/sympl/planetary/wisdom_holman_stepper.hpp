@@ -44,13 +44,35 @@
 #include "../core/table.hpp"
 #include "coordinates.hpp"
 #include "corrector.hpp"
-#include "encounters.hpp"
 #include "split_coordinates.hpp"
+#include "test_particle_run.hpp"
 #include "test_particles.hpp"
 #include "wisdom_holman_flows.hpp"
 #include "wisdom_holman_plan.hpp"
 
 namespace sympl {
+
+namespace detail {
+// A Wisdom-Holman run's bodies, G and table: finite masses > 0, G > 0, a
+// state of 3 numbers per body, a table the plan accepts; else invalid_argument.
+inline void check_wisdom_holman(const std::vector<double>& mass, double G, long dimension, const table& method,
+                                const wisdom_holman_options& options) {
+    const std::string who = "wisdom_holman_stepper";
+    check_masses(mass, who);
+    if (!(std::isfinite(G) && G > 0))
+        throw invalid_argument(who + ": G = " + number_text(G) + "; expected a finite G > 0");
+    if (dimension != Eigen::Dynamic && std::size_t(dimension) != 3 * mass.size())
+        throw invalid_argument(who + ": " + std::to_string(mass.size()) + " masses for a state of fixed dimension " +
+                               std::to_string(dimension) + "; expected 3 degrees of freedom per body");
+    plan_wisdom_holman(method, options, who);
+}
+
+// Exactly the same numbers (the state a stepper returned last, handed back).
+template <class State>
+bool same_state(const State& a, const State& b) {
+    return a.size() == b.size() && (a.q.array() == b.q.array()).all() && (a.p.array() == b.p.array()).all();
+}
+}  // namespace detail
 
 template <class State>
     requires phase_space_state<State> && std::is_floating_point_v<typename State::scalar>
@@ -58,13 +80,11 @@ class wisdom_holman_stepper {
 public:
     using state_type = State;
     using scalar = typename State::scalar;
-    // The tangent vector rides as the derivative part of these (MEGNO).
-    using tangent_scalar = dual<scalar, 1>;
 
     // mass[0] is the star, mass[1..N] the planets (all finite and > 0), G > 0.
     wisdom_holman_stepper(std::vector<double> mass, double G, table method, wisdom_holman_options options = {})
         : mass_(std::move(mass)), G_(G), table_(std::move(method)), options_(options), flows_(make_flows()),
-          particle_flows_(make_particle_flows()) {
+          test_particles_(mass_, G_, options_.coordinates) {
         const wisdom_holman_plan plan = plan_wisdom_holman(table_, options_, "wisdom_holman_stepper");
         ops_ = plan.substeps;
         lazy_ = plan.lazy_kernel;
@@ -88,34 +108,32 @@ public:
 
     // Batched Kepler drifts of all planets (one per drift sub-step), and
     // evaluations of the planet-planet interaction.
-    std::uint64_t kepler_drifts() const { return visit([](auto& f) { return f.kepler_drifts(); }); }
+    std::uint64_t kepler_drifts() const { return std::visit([](auto& f) { return f.kepler_drifts(); }, flows_); }
     std::uint64_t interaction_evaluations() const {
-        return visit([](auto& f) { return f.interaction_evaluations(); });
+        return std::visit([](auto& f) { return f.interaction_evaluations(); }, flows_);
     }
     // The drivers' name (integrate.hpp) for the interaction evaluations.
     std::uint64_t force_evaluations() const { return interaction_evaluations(); }
     // Planets the batched drift left to its scalar solve (kepler_drift_all).
-    std::uint64_t kepler_fallbacks() const { return visit([](auto& f) { return f.kepler_fallbacks(); }); }
+    std::uint64_t kepler_fallbacks() const {
+        return std::visit([](auto& f) { return f.kepler_fallbacks(); }, flows_);
+    }
     void reset_counters() {
         std::visit([](auto& f) { f.reset_counters(); }, flows_);
     }
 
-    // MEGNO (Cincotta & Simo 2000; chaos_indicator.hpp) from now on: a
-    // tangent vector of the planets' coordinates in the stepper,
-    // (dQ_1, dv_1, ..., dQ_N, dv_N), 6N numbers, rides along every drift and
-    // kick, and ln|tangent| is sampled at the end of every step. The
-    // corrector's C, a change of coordinates, is left out; the centre of mass
-    // too. `tangent` empty: every component 1 / sqrt(6N). While it is on,
-    // steps() joins no sub-steps across steps, and the tangent's work is not
-    // counted in the counters.
-    void start_megno(std::span<const scalar> tangent = {}) { tangent_state().start(tangent); }
-    void stop_megno() { tangent_state().stop(); }
+    // The planets' MEGNO (Cincotta & Simo 2000) from now on: a tangent
+    // (dQ_1, dv_1, ..., dQ_N, dv_N) rides along every drift and kick, sampled
+    // at the end of every step, C and the centre of mass left out
+    // (docs/planetary.md, "MEGNO"); `tangent` empty: every component 1 / sqrt(6N).
+    void start_megno(std::span<const scalar> tangent = {}) { tangent_of(*this).start(tangent); }
+    void stop_megno() { tangent_of(*this).stop(); }
     // <Y> over the steps since start_megno (NaN before the first), and Y at the last.
-    scalar megno() const { return tangent_state().megno(); }
-    scalar megno_y() const { return tangent_state().megno_y(); }
+    scalar megno() const { return tangent_of(*this).megno(); }
+    scalar megno_y() const { return tangent_of(*this).megno_y(); }
     // The tangent vector, in units of exp(tangent_log_scale()) (rescaled past 1e100).
-    std::vector<scalar> tangent() const { return tangent_state().values(); }
-    scalar tangent_log_scale() const { return tangent_state().log_scale(); }
+    std::vector<scalar> tangent() const { return tangent_of(*this).values(); }
+    scalar tangent_log_scale() const { return tangent_of(*this).log_scale(); }
 
     // Test particles (test_particles.hpp), in the inertial frame of the
     // state: set, they are loaded with the state at the next call of steps()
@@ -123,49 +141,37 @@ public:
     // of the last return. The planets' run is the same, bit for bit, with or
     // without them.
     void set_test_particles(test_particle_set<scalar> particles) {
-        detail::check_test_particles(particles, "wisdom_holman_stepper::set_test_particles");
-        particles_ = std::move(particles);
+        test_particles_.set(std::move(particles), "wisdom_holman_stepper::set_test_particles");
         loaded_ = false;
     }
-    const test_particle_set<scalar>& test_particles() const { return particles_; }
+    const test_particle_set<scalar>& test_particles() const { return test_particles_.particles(); }
     // MEGNO per test particle from now on (its tangent vector in the
     // particle's (dQ, dv), the planets' run given); while on, steps() joins
     // no sub-steps across steps. <Y> per particle, in test_particles()'s order.
-    void start_test_particle_megno() {
-        std::visit([](auto& p) { p.start_megno(); }, particle_flows_);
-    }
-    void stop_test_particle_megno() {
-        std::visit([](auto& p) { p.tangents().stop(); }, particle_flows_);
-    }
-    std::vector<scalar> test_particle_megno() const {
-        return std::visit([](const auto& p) { return p.tangents().megno(); }, particle_flows_);
-    }
+    void start_test_particle_megno() { test_particles_.start_megno(); }
+    void stop_test_particle_megno() { test_particles_.stop_megno(); }
+    std::vector<scalar> test_particle_megno() const { return test_particles_.megno(); }
 
     // Close encounters and losses of the test particles (encounters.hpp),
     // checked after every step from now on (steps() then joins no sub-steps
     // across steps); the time of the logs runs from `time`, advanced by dt per
     // step. Removed particles leave test_particles() and the MEGNO list.
     void track_encounters(encounter_options options, scalar time = 0) {
-        tracker_ = encounter_tracker<scalar>(std::move(options), mass_, G_);
-        tracker_.set_time(time);
+        test_particles_.track_encounters(std::move(options), time);
     }
-    const encounter_tracker<scalar>& encounters() const { return tracker_; }
-    encounter_tracker<scalar>& encounters() { return tracker_; }
+    const encounter_tracker<scalar>& encounters() const { return test_particles_.encounters(); }
+    encounter_tracker<scalar>& encounters() { return test_particles_.encounters(); }
 
-    // Steps per call the drivers of integrate.hpp should take at least: C
-    // (4K Kepler drifts and 4K - 1 interactions) is applied at every return,
-    // so chunks of 32 (8K / sub-steps per step) steps keep it under 1/32 of
-    // the run; 1 without a corrector.
+    // Steps per call the drivers should take at least: C (4K drifts, 4K - 1
+    // interactions) at every return kept under 1/32 of the run; 1 without C.
     std::size_t steps_per_check() const {
         const std::size_t per_step = std::max<std::size_t>(1, ops_.size() - (joined_ ? 1 : 0));
         return corrector_weights_.empty() ? 1 : 32 * 8 * corrector_weights_.size() / per_step + 1;
     }
 
-    // What the stepper carries between calls: its own coordinates and last
-    // forces, the state it returned last and the dt of its C^-1. A stepper of
-    // the same masses, G, table and options given restore_carried(carried())
-    // and handed that state goes on bit for bit (a checkpoint), test
-    // particles and their MEGNO included (the planets' MEGNO tangent is not carried).
+    // What the stepper carries between calls (its coordinates and last forces,
+    // the state it returned, the dt of its C^-1, the test particles and their
+    // MEGNO; not the planets' tangent): restored, it goes on bit for bit.
     std::vector<scalar> carried() const {
         std::vector<scalar> out;
         detail::carried_writer<scalar> w{out};
@@ -173,12 +179,8 @@ public:
         w.number(corrected_dt_);
         w.numbers(last_.q);
         w.numbers(last_.p);
-        visit([&](const auto& f) { f.write_carried(w); });
-        // The test particles: as of the last return (inertial) and in the flows.
-        for (const auto* v : particles_.parts()) w.numbers(*v);
-        w.number(scalar(particles_.id.size()));
-        for (std::uint64_t i : particles_.id) w.number(scalar(i));
-        std::visit([&](const auto& p) { p.write_carried(w); }, particle_flows_);
+        std::visit([&](const auto& f) { f.write_carried(w); }, flows_);
+        test_particles_.write_carried(w);
         return out;
     }
     void restore_carried(std::span<const scalar> values) {
@@ -192,17 +194,11 @@ public:
             r.refuse("holds a state of another size than the bodies'");
         flows_type flows = flows_;  // the stepper untouched by a list that does not fit
         std::visit([&](auto& f) { f.read_carried(r); }, flows);
-        test_particle_set<scalar> particles;
-        for (auto* v : particles.parts()) r.numbers(*v);
-        test_particle_flows<scalar, democratic_heliocentric_coordinates<scalar>>::read_ids(r, particles.id);
-        for (const auto* v : particles.parts())
-            if (v->size() != particles.id.size()) r.refuse("holds test particles of unequal lengths");
-        particle_flows_type particle_flows = particle_flows_;
-        std::visit([&](auto& p) { p.read_carried(r); }, particle_flows);
+        test_particle_run<scalar> test_particles = test_particles_;
+        test_particles.read_carried(r);
         r.done();
         flows_ = std::move(flows);
-        particles_ = std::move(particles);
-        particle_flows_ = std::move(particle_flows);
+        test_particles_ = std::move(test_particles);
         loaded_ = loaded;
         corrected_dt_ = corrected_dt;
         last_ = std::move(last);
@@ -217,51 +213,25 @@ private:
     using democratic_flows = wisdom_holman_flows<scalar, democratic_heliocentric_coordinates<scalar>>;
     using jacobi_flows = wisdom_holman_flows<scalar, jacobi_coordinates<scalar>>;
     using flows_type = std::variant<democratic_flows, jacobi_flows>;
-    using particle_flows_type = std::variant<test_particle_flows<scalar, democratic_heliocentric_coordinates<scalar>>,
-                                             test_particle_flows<scalar, jacobi_coordinates<scalar>>>;
 
-    // The masses, G and the state's dimension checked, and the coordinates chosen: once.
+    // Everything checked before any work, and the coordinates chosen: once.
     flows_type make_flows() const {
-        const std::string who = "wisdom_holman_stepper";
-        detail::check_masses(mass_, who);
-        if (!(std::isfinite(G_) && G_ > 0))
-            throw invalid_argument(who + ": G = " + detail::number_text(G_) + "; expected a finite G > 0");
-        if (State::dimension != Eigen::Dynamic && std::size_t(State::dimension) != 3 * mass_.size())
-            throw invalid_argument(who + ": " + std::to_string(mass_.size()) +
-                                   " masses for a state of fixed dimension " + std::to_string(State::dimension) +
-                                   "; expected 3 degrees of freedom per body");
-        plan_wisdom_holman(table_, options_, who);  // refuses what does not fit, before any work
+        detail::check_wisdom_holman(mass_, G_, State::dimension, table_, options_);
         if (options_.coordinates == wh_coordinates::jacobi)
             return flows_type(std::in_place_type<jacobi_flows>, mass_, G_);
         return flows_type(std::in_place_type<democratic_flows>, mass_, G_);
     }
 
-    particle_flows_type make_particle_flows() const {
-        if (options_.coordinates == wh_coordinates::jacobi)
-            return particle_flows_type(std::in_place_index<1>, mass_, G_);
-        return particle_flows_type(std::in_place_index<0>, mass_, G_);
-    }
-    // The test particles' flows in the coordinates of `flows`, and both together.
-    template <class Flows>
-    auto& particles_of(Flows&) {
-        using coordinates = std::decay_t<decltype(std::declval<Flows&>().coordinates())>;
-        return std::get<test_particle_flows<scalar, coordinates>>(particle_flows_);
-    }
+    // The planets' flows and the test particles' together.
     template <class Flows>
     auto with_particles(Flows& flows) {
-        auto& p = particles_of(flows);
+        auto& p = test_particles_.flows_beside(flows);
         return with_test_particles<Flows, std::decay_t<decltype(p)>, scalar>{flows, p};
     }
 
-    template <class F>
-    auto visit(F f) const {
-        return std::visit(f, flows_);
-    }
-    planetary_tangent<scalar>& tangent_state() {
-        return std::visit([](auto& f) -> planetary_tangent<scalar>& { return f.tangent(); }, flows_);
-    }
-    const planetary_tangent<scalar>& tangent_state() const {
-        return std::visit([](auto& f) -> const planetary_tangent<scalar>& { return f.tangent(); }, flows_);
+    template <class Self>
+    static auto& tangent_of(Self& self) {
+        return std::visit([](auto& f) -> auto& { return f.tangent(); }, self.flows_);
     }
 
     // The steps themselves, in the coordinates chosen at construction.
@@ -270,14 +240,11 @@ private:
         load(flows, x, dt);
         const std::size_t L = ops_.size();
         auto both = with_particles(flows);
-        auto& particles = particles_of(flows);
+        auto& particles = test_particles_.flows_beside(flows);
         // With MEGNO on, every step ends at its own end, where it is sampled.
         const bool megno = flows.tangent().started(), particles_megno = particles.tangents().started();
-        const bool join = joined_ && !megno && !particles_megno && !tracker_.on();
-        if (tracker_.on()) {
-            particles.bodies(flows.state(), bodies_);
-            tracker_.begin(particles.state(), bodies_);
-        }
+        const bool join = joined_ && !megno && !particles_megno && !test_particles_.tracking();
+        test_particles_.begin(flows);
         for (std::size_t k = 0; k < n && flows.finite(); ++k) {
             for (std::size_t j = 0; j < L && flows.finite(); ++j) {
                 if (join && k > 0 && j == 0) continue;  // done with the previous step's last sub-step
@@ -291,11 +258,7 @@ private:
             }
             if (megno && flows.finite()) flows.tangent().sample(dt);
             if (particles_megno && flows.finite()) particles.tangents().sample(dt);
-            if (tracker_.on() && flows.finite()) {
-                particles.bodies(flows.state(), bodies_);
-                tracker_.after_step(particles.state(), bodies_, particles.id(), dt, gone_);
-                if (std::find(gone_.begin(), gone_.end(), char(1)) != gone_.end()) particles.remove(gone_);
-            }
+            if (flows.finite()) test_particles_.after_step(flows, dt);
         }
         store(flows, x, dt);
     }
@@ -304,7 +267,7 @@ private:
     // run: the tangent stays.
     template <class Flows>
     void correct(Flows& flows, int direction, scalar dt) {
-        auto& particles = particles_of(flows);
+        auto& particles = test_particles_.flows_beside(flows);
         const bool paused = flows.tangent().paused(), particles_paused = particles.tangents().paused();
         flows.tangent().pause(true);
         particles.tangents().pause(true);
@@ -314,19 +277,15 @@ private:
         particles.tangents().pause(particles_paused);
     }
 
-    static bool same(const State& a, const State& b) {
-        return a.size() == b.size() && (a.q.array() == b.q.array()).all() && (a.p.array() == b.p.array()).all();
-    }
-
     // Inertial -> the chosen coordinates, unless x is what this stepper
     // returned last (and, with a corrector, for steps of the same dt), then
     // C^-1 into the leapfrog's coordinates.
     template <class Flows>
     void load(Flows& flows, const State& x, scalar dt) {
-        if (loaded_ && same(x, last_) && (corrector_weights_.empty() || dt == corrected_dt_)) return;
+        if (loaded_ && detail::same_state(x, last_) && (corrector_weights_.empty() || dt == corrected_dt_)) return;
         detail::checked_finite_bodies(x, mass_, "wisdom_holman_stepper");
         flows.load(flows.coordinates().split(x));
-        particles_of(flows).load(x, particles_);
+        test_particles_.load(flows, x);
         loaded_ = true;
         if (!corrector_weights_.empty()) {
             correct(flows, -1, dt);
@@ -339,14 +298,14 @@ private:
     template <class Flows>
     void store(Flows& flows, State& x, scalar dt) {
         const bool corrected = !corrector_weights_.empty() && flows.finite();
-        auto& particles = particles_of(flows);
+        auto& particles = test_particles_.flows_beside(flows);
         auto kept = corrected ? flows.keep() : typename Flows::kept_type{};
         auto kept_particles = corrected ? particles.keep() : decltype(particles.keep()){};
         if (corrected) correct(flows, +1, dt);
         State y = x;
         flows.store(y);
         x = flows.coordinates().join(y);
-        particles.store(x, particles_);
+        test_particles_.store(flows, x);
         last_ = x;
         loaded_ = flows.finite();
         if (corrected) flows.restore(std::move(kept)), particles.restore(std::move(kept_particles));
@@ -357,11 +316,7 @@ private:
     table table_;
     wisdom_holman_options options_;
     flows_type flows_;
-    particle_flows_type particle_flows_;
-    test_particle_set<scalar> particles_;  // inertial, as of the last return (or as set)
-    encounter_tracker<scalar> tracker_;
-    std::array<std::vector<scalar>, 6> bodies_;  // the tracker's bodies in the particles' frame
-    std::vector<char> gone_;
+    test_particle_run<scalar> test_particles_;  // and their MEGNO and encounters
     std::vector<scalar> corrector_weights_;  // c_1..c_K, empty without a corrector
     scalar corrected_dt_ = 0;                // the dt of the C^-1 applied at the last load
     std::vector<substep> ops_;
