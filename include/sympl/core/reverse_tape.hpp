@@ -34,6 +34,18 @@ struct tape_edge {
     std::int32_t of;
 };
 
+// Where an expression of one taped operand emits its single partial: in
+// registers, never on the tape (such a value records no statement).
+template <class T>
+struct one_operand {
+    std::int32_t node = 0;
+    T partial = T(1);
+    void emit(std::int32_t n, T p) {
+        node = n;
+        partial = p;
+    }
+};
+
 template <class T>
 class reverse_tape {
 public:
@@ -49,7 +61,8 @@ public:
     }
 
     // Starts a recording with n independent variables: the nodes 1..n. Node 0
-    // stands for every constant; its adjoint collects nothing that is read.
+    // stands for every constant: an edge to it costs less than a test for it
+    // at every operand, and its adjoint is never read.
     void begin(std::size_t n, const char* who) {
         if (active() != nullptr)
             throw invalid_argument(std::string(who) +
@@ -61,7 +74,6 @@ public:
         end_ = edges_.data();
         nodes_ = std::ptrdiff_t(n + 1);
         reserve(0);
-        std::fill(adjoints_data_, adjoints_data_ + nodes_, T(0));
         active() = this;
     }
 
@@ -73,7 +85,7 @@ public:
     struct writer {
         tape_edge<T>* cursor;
         std::int32_t of;
-        std::int32_t last = 0;
+        std::int32_t last = -1;
         void emit(std::int32_t node, T partial) {
             if (node == last) {
                 cursor[-1].partial += partial;
@@ -85,26 +97,39 @@ public:
     };
     // Room for a statement of at most `count` edges.
     writer open_statement(std::size_t count) {
-        if (count > std::size_t(capacity_end_ - end_)) [[unlikely]]
+        // In bytes: a count of edges would cost a division by their size.
+        if (reinterpret_cast<const char*>(capacity_end_) - reinterpret_cast<const char*>(end_) <
+            std::ptrdiff_t(count * sizeof(tape_edge<T>))) [[unlikely]]
             reserve(count);
         return {end_, std::int32_t(nodes_)};
     }
-    // Ends the statement `w` wrote and returns its node; 0 when it has no
-    // edges (a value that depends on no variable is a constant).
-    std::int32_t close_statement(const writer& w) {
-        if (w.cursor == end_) return 0;
-        end_ = w.cursor;
-        adjoints_data_[w.of] = T(0);
-        return std::int32_t(nodes_++);
+    // Ends the statement `w` wrote: `node` and `scale` of the value it
+    // computed. A statement of one edge (its operands one node, or constants)
+    // is not kept: its value is that edge's node, scaled by the edge's partial
+    // (reverse_mode.hpp's taped).
+    void close_statement(const writer& w, std::int32_t& node, T& scale) {
+        const tape_edge<T>* first = end_;
+        if (w.cursor - first > 1) [[likely]] {
+            end_ = w.cursor;
+            node = std::int32_t(nodes_++);
+            scale = T(1);
+        } else {
+            node = first->with_respect_to;
+            scale = first->partial;
+        }
     }
 
     // Sweeps backwards from `output`, whose adjoint is `seed`, and ends the
     // recording; the adjoint of input i (0-based) is then input_adjoint(i).
+    // The adjoints are zeroed here in one pass, not one store per statement.
     void sweep(std::int32_t output, T seed = T(1)) {
         active() = nullptr;
         T* adjoint = adjoints_data_;
+        std::fill(adjoint, adjoint + nodes_, T(0));
         adjoint[output] = seed;  // output 0: a constant, whose adjoint no edge reads
-        for (const tape_edge<T>* e = end_; e != edges_.data();) {
+        const tape_edge<T>* first = edges_.data();
+#pragma GCC unroll 2
+        for (const tape_edge<T>* e = end_; e != first;) {
             --e;
             adjoint[e->with_respect_to] += e->partial * adjoint[e->of];
         }
