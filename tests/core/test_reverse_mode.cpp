@@ -107,6 +107,21 @@ TEST_CASE("reverse mode: each elementary function's derivative to rounding") {
     check([](const auto& a) { using std::hypot; return hypot(a, 2.0 * a); }, x, std::sqrt(5.0));
 }
 
+TEST_CASE("reverse mode: a function of a compound argument records the argument once") {
+    // f = x2 / sqrt(x0^2 + x1^2 + 1/2): the argument is one statement (x0, x1),
+    // the quotient another (x2, and the argument with sqrt's derivative).
+    Vec in(3), out;
+    in << 0.3, -0.7, 1.9;
+    reverse_gradient([](const auto& v) { using std::sqrt; return v[2] / sqrt(v[0] * v[0] + v[1] * v[1] + 0.5); }, in, out);
+    const double r2 = 0.3 * 0.3 + 0.7 * 0.7 + 0.5, s = 1 / std::sqrt(r2);
+    CHECK(std::abs(out[0] + 1.9 * 0.3 * s / r2) <= 8 * eps * 1.9 * 0.3 * s / r2);
+    CHECK(std::abs(out[1] - 1.9 * 0.7 * s / r2) <= 8 * eps * 1.9 * 0.7 * s / r2);
+    CHECK(std::abs(out[2] - s) <= 4 * eps * s);
+    const auto& tape = detail::reverse_tape<double>::of_this_thread();
+    CHECK(tape.statements() == 1 + 3 + 2);  // the constants' node, the inputs, two statements
+    CHECK(tape.operations() == 2 + 2);
+}
+
 TEST_CASE("reverse mode: a variable exponent, and branches follow the value") {
     Vec in(2), out;
     in << 1.7, 2.3;
