@@ -81,18 +81,21 @@ public:
     // while the expression emits (a member of the tape would be stored and
     // reloaded at every operation). A node met twice in a row within a
     // statement (r * r) is one edge: one update of its adjoint instead of two
-    // that would wait on each other.
+    // that would wait on each other. The latest edge is held back in
+    // registers, so that a statement of one node writes nothing.
     struct writer {
         tape_edge<T>* cursor;
         std::int32_t of;
-        std::int32_t last = -1;
+        std::int32_t last = -1;  // the held edge's node; none yet
+        T held = T(0);           // and its partial
         void emit(std::int32_t node, T partial) {
             if (node == last) {
-                cursor[-1].partial += partial;
+                held += partial;
                 return;
             }
-            *cursor++ = {partial, node, of};
+            if (last >= 0) *cursor++ = {held, last, of};
             last = node;
+            held = partial;
         }
     };
     // Room for a statement of at most `count` edges.
@@ -108,14 +111,14 @@ public:
     // is not kept: its value is that edge's node, scaled by the edge's partial
     // (reverse_mode.hpp's taped).
     void close_statement(const writer& w, std::int32_t& node, T& scale) {
-        const tape_edge<T>* first = end_;
-        if (w.cursor - first > 1) [[likely]] {
-            end_ = w.cursor;
+        if (w.cursor != end_) [[likely]] {
+            *w.cursor = {w.held, w.last, w.of};
+            end_ = w.cursor + 1;
             node = std::int32_t(nodes_++);
             scale = T(1);
         } else {
-            node = first->with_respect_to;
-            scale = first->partial;
+            node = w.last;
+            scale = w.held;
         }
     }
 
