@@ -14,9 +14,16 @@
 // edge's `of` is final when the sweep reaches it, since every edge that feeds
 // it belongs to a later statement. Edges stream through memory (written
 // forwards, read backwards); the adjoints are an array of their own, one per
-// node, zeroed as each statement is recorded, where that line is in cache.
-// One capacity check per statement; one tape per thread and scalar type,
-// reused: no allocation once warm.
+// node, zeroed by one fill before the sweep. One capacity check per
+// statement; one tape per thread and scalar type, reused: no allocation once
+// warm.
+//
+// What it costs (FPU chain, 2 statements and 4 edges per particle; 2026-11-27,
+// loaded 2-core machine, least of many calls): recording 3.8 ns and the sweep
+// 4.0 ns per particle. Both wait on memory rather than on arithmetic: each
+// statement stores the tape's end and the next one loads it back (GCC keeps
+// it in memory across statements), and the sweep carries the running sum's
+// adjoint from one particle to the next through a store and a load.
 #include <algorithm>
 #include <cstdint>
 #include <string>
@@ -89,6 +96,10 @@ public:
         std::int32_t last = -1;  // the held edge's node; none yet
         T held = T(0);           // and its partial
         void emit(std::int32_t node, T partial) {
+            // Nodes are never negative: told, the first emit of a statement
+            // compiles to no test against `last`, and the others to no test
+            // of whether an edge is held.
+            if (node < 0) __builtin_unreachable();
             if (node == last) {
                 held += partial;
                 return;
