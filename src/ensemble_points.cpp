@@ -8,6 +8,7 @@
 #include "csv_numbers.hpp"
 #include "format.hpp"
 #include "run_plan.hpp"
+#include "systems.hpp"
 
 namespace sympl::app {
 
@@ -25,7 +26,7 @@ std::string key_of(const system_entry& entry, const parameter_values& v) {
 
 }  // namespace
 
-std::vector<std::vector<double>> read_states(const std::string& path, std::size_t dof) {
+std::vector<std::vector<double>> read_states(const std::string& path, const std::vector<std::string>& columns) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw scene_error(path + ": cannot open the states file");
     in.seekg(0, std::ios::end);
@@ -35,9 +36,9 @@ std::vector<std::vector<double>> read_states(const std::string& path, std::size_
     std::string line;
     std::size_t number = 0;
     std::vector<std::vector<double>> states;
+    const std::size_t dof = columns.size() / 2;
     std::string expected_header;
-    for (std::size_t i = 1; i <= dof; ++i) expected_header += (i > 1 ? ",q" : "q") + std::to_string(i);
-    for (std::size_t i = 1; i <= dof; ++i) expected_header += ",p" + std::to_string(i);
+    for (const auto& c : columns) expected_header += (expected_header.empty() ? "" : ",") + c;
     while (std::getline(in, line)) {
         ++number;
         if (!line.empty() && line.back() == '\r') line.pop_back();
@@ -51,7 +52,7 @@ std::vector<std::vector<double>> read_states(const std::string& path, std::size_
         std::vector<double> x = csv_numbers(line, where);
         if (x.size() != 2 * dof)
             throw scene_error(where + std::to_string(x.size()) + " numbers; expected " + std::to_string(2 * dof) +
-                              " (q1..q" + std::to_string(dof) + ", p1..p" + std::to_string(dof) + ")");
+                              " (" + columns.front() + ".." + columns.back() + ")");
         if (double(states.size()) >= max_ensemble_size)
             throw scene_error(where + "more than " + shortest(max_ensemble_size) + " states; expected at most that");
         states.push_back(std::move(x));
@@ -115,7 +116,7 @@ ensemble_setup set_up_ensemble(const scene& s, double max_steps) {
         throw invalid_argument(s.source + ": each trajectory at dt = " + shortest(s.dt[0]) + " over t = " + shortest(s.t0) +
                                " .. " + shortest(s.t_end) + " takes " + format_number(span_steps, 6) +
                                " steps; the limit is " + format_number(max_steps, 6) + " (raise it with --max-steps)");
-    if (e.grid.empty()) u.states = read_states(e.states_file, u.base.degrees_of_freedom);
+    if (e.grid.empty()) u.states = read_states(e.states_file, state_columns(u.base.system, u.base.degrees_of_freedom));
     u.trajectories = e.grid.empty() ? u.states.size() : e.size();
     const double total = double(u.trajectories) * span_steps;
     if (total > 1e4 * max_steps)

@@ -20,8 +20,9 @@ struct ensemble_point {
     std::string hamiltonian_key;      // points with equal keys share one Hamiltonian
 };
 
-// The states of a CSV file: a header q1..qn,p1..pn, then one state per line.
-std::vector<std::vector<double>> read_states(const std::string& path, std::size_t dof);
+// The states of a CSV file: a header of the run's columns (state_columns: q1..qn,p1..pn,
+// or the bodies' names), then one state per line.
+std::vector<std::vector<double>> read_states(const std::string& path, const std::vector<std::string>& columns);
 
 // Point `index` of the scene's grid (the last axis varies fastest) or state
 // `index` of its CSV, with its start or the reason it has none.

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "format.hpp"
+#include "systems.hpp"
 #include "writers.hpp"
 
 namespace sympl::app {
@@ -14,28 +15,19 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// "q3", "p1_0": built with a stream (GCC 12 warns falsely on "q" + to_string(i)).
-std::string numbered(const char* name, std::size_t i, const char* suffix = "") {
-    std::ostringstream text;
-    text << name << i << suffix;
-    return text.str();
-}
-
 std::vector<std::string> header(const scene& s, const problem& p) {
     const ensemble_spec& e = *s.ensemble;
     std::vector<std::string> h{"index"};
-    const std::size_t n = p.degrees_of_freedom;
+    // The run's own column names (q1.., or the bodies' "jupiter_x" where the system names them).
+    const std::vector<std::string> columns = state_columns(p.system, p.degrees_of_freedom);
     if (!e.grid.empty())
         for (const auto& a : e.grid) h.push_back(a.name);
-    else {
-        for (std::size_t i = 1; i <= n; ++i) h.push_back(numbered("q", i, "_0"));
-        for (std::size_t i = 1; i <= n; ++i) h.push_back(numbered("p", i, "_0"));
-    }
+    else
+        for (const auto& c : columns) h.push_back(c + "_0");
     for (const char* c : {"status", "blowup_step", "blowup_time"}) h.push_back(c);
     if (e.megno) h.push_back("megno");
     h.push_back("max_energy_error");
-    for (std::size_t i = 1; i <= n; ++i) h.push_back(numbered("q", i, "_final"));
-    for (std::size_t i = 1; i <= n; ++i) h.push_back(numbered("p", i, "_final"));
+    for (const auto& c : columns) h.push_back(c + "_final");
     h.push_back("reason");
     return h;
 }

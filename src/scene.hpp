@@ -72,7 +72,7 @@ struct ensemble_axis {
 };
 struct ensemble_spec {
     std::vector<ensemble_axis> grid;  // empty: states_file
-    std::string states_file;          // columns q1..qn, p1..pn; relative to the scene file
+    std::string states_file;          // columns as state_columns names them; relative to the scene file
     bool megno = false;               // indicator = "megno" (or "none")
     std::size_t sample_every = 10;    // energy error and MEGNO sampled every k steps
     std::size_t orbits = 0;           // a Poincare section (q1 = 0, p1 > 0) of this many orbits of the grid
@@ -81,7 +81,7 @@ struct ensemble_spec {
 inline constexpr double max_ensemble_size = 1e7;
 
 // `[test_particles]`: massless bodies run with the planets by the scene's one
-// wh(...) method, MEGNO per particle (test_particle_run.hpp): a grid over the
+// wh(...) method, MEGNO per particle (run_test_particles.hpp): a grid over the
 // semi-major axis a [AU] and eccentricity e, the angles fixed, or a CSV of
 // orbital elements (a, e, then optionally inclination, node, pericentre,
 // mean_anomaly; angles in degrees) about the star.

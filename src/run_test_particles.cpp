@@ -1,0 +1,213 @@
+// A scene's [test_particles] run: the population read, cut into fixed
+// pieces, each piece a Wisdom-Holman run of its own over the same planets,
+// the pieces shared among threads (run_test_particles.hpp).
+#include "run_test_particles.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <exception>
+#include <fstream>
+#include <limits>
+#include <mutex>
+#include <numbers>
+#include <thread>
+#include <tuple>
+
+#include <sympl/planetary/encounters.hpp>
+#include <sympl/planetary/wisdom_holman_stepper.hpp>
+
+#include "csv_numbers.hpp"
+#include "format.hpp"
+#include "systems.hpp"
+
+namespace sympl::app {
+
+namespace {
+
+constexpr double degree = std::numbers::pi / 180;
+constexpr std::size_t max_elements_bytes = std::size_t(64) << 20;
+const std::vector<std::string> element_columns{"a", "e", "inclination", "node", "pericentre", "mean_anomaly"};
+
+// elements = "file.csv": a header naming the columns, a and e first, then
+// any leading part of inclination, node, pericentre, mean_anomaly (degrees).
+std::vector<orbital_elements> read_elements(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw scene_error(path + ": cannot open the orbital elements file");
+    in.seekg(0, std::ios::end);
+    if (std::size_t(in.tellg()) > max_elements_bytes)
+        throw scene_error(path + ": larger than " + std::to_string(max_elements_bytes) + " bytes; expected at most that");
+    in.seekg(0);
+    std::string line, header;
+    std::size_t number = 0, columns = 0;
+    std::vector<orbital_elements> orbits;
+    while (std::getline(in, line)) {
+        ++number;
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        const std::string where = path + ":" + std::to_string(number) + ": ";
+        if (number == 1) {
+            for (std::size_t k = 0; k < element_columns.size(); ++k) {
+                header += (k ? "," : "") + element_columns[k];
+                if (k >= 1 && line == header) columns = k + 1;
+            }
+            if (!columns)
+                throw scene_error(where + "header '" + line + "'; expected 'a,e' and optionally the next of "
+                                  "',inclination,node,pericentre,mean_anomaly' in that order (angles in degrees)");
+            continue;
+        }
+        if (line.empty()) continue;
+        const std::vector<double> x = csv_numbers(line, where);
+        if (x.size() != columns)
+            throw scene_error(where + std::to_string(x.size()) + " fields; expected " + std::to_string(columns) +
+                              " as the header names");
+        if (!(x[0] > 0)) throw scene_error(where + "a = " + shortest(x[0]) + "; expected a semi-major axis > 0 (AU)");
+        if (!(x[1] >= 0 && x[1] < 1))
+            throw scene_error(where + "e = " + shortest(x[1]) + "; expected an eccentricity in [0, 1) (elliptic orbits)");
+        if (double(orbits.size()) >= max_test_particles)
+            throw scene_error(where + "more than " + std::to_string(std::size_t(max_test_particles)) +
+                              " test particles; expected at most that");
+        orbital_elements o{x[0], x[1]};
+        double* angles[] = {&o.inclination, &o.node, &o.pericentre, &o.mean_anomaly};
+        for (std::size_t k = 2; k < columns; ++k) *angles[k - 2] = x[k] * degree;
+        orbits.push_back(o);
+    }
+    if (orbits.empty()) throw scene_error(path + ": no orbits; expected a header and at least one line of elements");
+    return orbits;
+}
+
+// 0: OMP_NUM_THREADS if it is a count, else every core.
+std::size_t thread_count(int threads) {
+    if (threads > 0) return std::size_t(threads);
+    if (const char* env = std::getenv("OMP_NUM_THREADS")) {
+        int n = 0;
+        const auto [end, ec] = std::from_chars(env, env + std::char_traits<char>::length(env), n);
+        if (ec == std::errc() && *end == '\0' && n >= 1 && n <= 1024) return std::size_t(n);
+    }
+    return std::max(1u, std::thread::hardware_concurrency());
+}
+
+// The osculating heliocentric a and e of a particle at (r, v) about G m_0,
+// r and v relative to the star.
+std::pair<double, double> elements_of(const std::array<double, 3>& r, const std::array<double, 3>& v, double gm) {
+    const double rr = std::hypot(r[0], r[1], r[2]), v2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+    const double rv = r[0] * v[0] + r[1] * v[1] + r[2] * v[2];
+    std::array<double, 3> e{};
+    for (int c = 0; c < 3; ++c) e[std::size_t(c)] = ((v2 - gm / rr) * r[std::size_t(c)] - rv * v[std::size_t(c)]) / gm;
+    return {1 / (2 / rr - v2 / gm), std::hypot(e[0], e[1], e[2])};
+}
+
+struct planets {
+    std::vector<double> mass;
+    double G = 0;
+    phase_space<double> x0;
+    method_spec method;
+    double t0 = 0, dt = 0;
+    std::size_t steps = 0;
+    std::vector<std::string> body_names;  // star first
+    bool megno = false;
+};
+
+// One piece: orbits[first, last) with the planets, into rows[first, last).
+void run_piece(const planets& p, const std::vector<orbital_elements>& orbits, std::size_t first, std::size_t last,
+               std::vector<test_particle_row>& rows) {
+    using State = phase_space<double>;
+    const std::vector<orbital_elements> mine(orbits.begin() + std::ptrdiff_t(first), orbits.begin() + std::ptrdiff_t(last));
+    wisdom_holman_stepper<State> wh(p.mass, p.G, *p.method.coefficients, wisdom_holman_options_of(p.method));
+    State x = p.x0;
+    wh.set_test_particles(particles_on(mine, x, p.mass, p.G));
+    // Removed, never silently lost: inside a planet's Hill radius, where the
+    // splitting about the star no longer holds, or past the escape distance.
+    encounter_options lost;
+    lost.radius.push_back(0.005);  // the Sun's radius, 0.00465 AU
+    for (std::size_t k = 1; k < p.mass.size(); ++k) {
+        const double d = std::hypot(x.q[Eigen::Index(3 * k)] - x.q[0], x.q[Eigen::Index(3 * k + 1)] - x.q[1],
+                                    x.q[Eigen::Index(3 * k + 2)] - x.q[2]);
+        lost.radius.push_back(d * std::cbrt(p.mass[k] / (3 * p.mass[0])));
+    }
+    lost.escape_distance = test_particle_escape_distance;
+    wh.track_encounters(lost, p.t0);
+    if (p.megno) wh.start_test_particle_megno();
+    wh.steps(x, p.dt, p.steps);
+    const auto& kept = wh.test_particles();
+    const std::vector<double> megno = p.megno ? wh.test_particle_megno() : std::vector<double>(kept.size(), NAN);
+    const double gm = p.G * p.mass[0];
+    const std::array<double, 3> sun_v{x.p[0] / p.mass[0], x.p[1] / p.mass[0], x.p[2] / p.mass[0]};
+    for (std::size_t i = first; i < last; ++i) rows[i].start = orbits[i], rows[i].kept = false;
+    for (std::size_t k = 0; k < kept.size(); ++k) {
+        test_particle_row& row = rows[first + kept.id[k]];
+        row.kept = true;
+        row.megno = megno[k];
+        std::tie(row.a, row.e) = elements_of({kept.x[k] - x.q[0], kept.y[k] - x.q[1], kept.z[k] - x.q[2]},
+                                             {kept.vx[k] - sun_v[0], kept.vy[k] - sun_v[1], kept.vz[k] - sun_v[2]}, gm);
+    }
+    for (const auto& loss : wh.encounters().losses()) {
+        test_particle_row& row = rows[first + loss.particle];
+        row.kept = false;
+        row.megno = row.a = row.e = NAN;
+        row.reason = loss.reason != loss_reason::collision ? loss_reason_name(loss.reason)
+                     : loss.body == 0                          ? "collision with the star"
+                                                               : "inside the Hill radius of " + p.body_names[loss.body];
+        row.removed_time = loss.time;
+    }
+}
+
+}  // namespace
+
+std::vector<orbital_elements> test_particle_orbits(const scene& s) {
+    const test_particle_spec& tp = *s.test_particles;
+    if (!tp.elements_file.empty()) return read_elements(tp.elements_file);
+    orbital_elements rest;
+    rest.inclination = tp.inclination * degree, rest.node = tp.node * degree, rest.pericentre = tp.pericentre * degree;
+    rest.mean_anomaly = tp.mean_anomaly * degree;
+    return element_grid(tp.a.from, tp.a.to, tp.a.count, tp.e.from, tp.e.to, tp.e.count, rest);
+}
+
+std::vector<test_particle_row> run_test_particles(const scene& s, const std::vector<orbital_elements>& orbits,
+                                                  int threads, double max_steps, std::size_t piece) {
+    if (piece == 0) throw invalid_argument("run_test_particles: pieces of 0 particles; expected at least 1");
+    const problem base = make_problem(s.system, s.parameters, s.q0, s.p0, s.source);
+    planets p{base.masses, base.G, phase_space<double>(base.x0.size() / 2), s.methods[0], s.t0,
+              (s.methods[0].dt.empty() ? s.dt : s.methods[0].dt)[0], 0, {}, s.test_particles->megno};
+    // Bodies by the registry's coordinate names ("jupiter_x": jupiter), else "body k".
+    const std::vector<std::string> columns = state_columns(s.system, base.x0.size() / 2);
+    for (std::size_t k = 0; k < p.mass.size(); ++k) {
+        const std::string& c = columns[3 * k];
+        p.body_names.push_back(c.ends_with("_x") ? c.substr(0, c.size() - 2) : "body " + std::to_string(k));
+    }
+    const std::size_t n = base.x0.size() / 2;
+    for (std::size_t i = 0; i < n; ++i) p.x0.q[Eigen::Index(i)] = base.x0[i], p.x0.p[Eigen::Index(i)] = base.x0[n + i];
+    const double span_steps = std::ceil((s.t_end - s.t0) / p.dt - 1e-9);
+    const double total = span_steps * double(orbits.size());
+    if (!(span_steps <= max_steps) || !(total <= 1e4 * max_steps))
+        throw scene_error(s.source + ": " + shortest(double(orbits.size())) + " test particles over " +
+                          format_number(span_steps, 6) + " steps of dt = " + shortest(p.dt) + " take " +
+                          format_number(total, 6) + " particle-steps; the limit is " + format_number(max_steps, 6) +
+                          " steps and 1e4 times that in particle-steps (raise it with --max-steps)");
+    p.steps = std::size_t(span_steps);
+    std::vector<test_particle_row> rows(orbits.size());
+    const std::size_t pieces = (orbits.size() + piece - 1) / piece;
+    std::atomic<std::size_t> next{0};
+    std::exception_ptr failure;
+    std::mutex failure_lock;
+    const auto work = [&] {
+        for (std::size_t k; (k = next++) < pieces;) {
+            try {
+                run_piece(p, orbits, k * piece, std::min(orbits.size(), (k + 1) * piece), rows);
+            } catch (...) {
+                const std::lock_guard hold(failure_lock);
+                if (!failure) failure = std::current_exception();
+                next = pieces;
+            }
+        }
+    };
+    std::vector<std::thread> team;
+    for (std::size_t t = 1; t < std::min(thread_count(threads), pieces); ++t) team.emplace_back(work);
+    work();
+    for (auto& t : team) t.join();
+    if (failure) std::rethrow_exception(failure);
+    return rows;
+}
+
+}  // namespace sympl::app
