@@ -27,7 +27,7 @@
 #include "report.hpp"
 #include "run_scene.hpp"
 #include "scene.hpp"
-#include "test_particle_run.hpp"
+#include "run_test_particles.hpp"
 
 namespace {
 

@@ -97,7 +97,7 @@ struct problem {
     // Exact state at time t (from x0 at t0 = 0); empty when there is none.
     std::function<std::vector<double>(double t)> exact;
     // A planetary system's masses (star first) and G, which a Wisdom-Holman
-    // run of test particles needs beside x0 (test_particle_run.hpp); empty
+    // run of test particles needs beside x0 (run_test_particles.hpp); empty
     // and 0 for any other system.
     std::vector<double> masses;
     double G = 0;

@@ -8,7 +8,7 @@
 
 #include "format.hpp"
 #include "output_set.hpp"
-#include "test_particle_run.hpp"
+#include "run_test_particles.hpp"
 #include "timing.hpp"
 #include "writers.hpp"
 

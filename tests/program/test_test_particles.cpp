@@ -1,4 +1,4 @@
-// A scene's [test_particles] (scene_test_particles.cpp, test_particle_run.hpp):
+// A scene's [test_particles] (scene_test_particles.cpp, run_test_particles.hpp):
 //   (a) each error of the table, with its line and what was expected;
 //   (b) a small belt run of 440 years: MEGNO near 2 for particles far inside
 //       Jupiter (2.2-3.2 AU, not the 3:1 resonance), above 4 for some just
@@ -16,7 +16,7 @@
 
 #include "scene.hpp"
 #include "scratch_directory.hpp"
-#include "test_particle_run.hpp"
+#include "run_test_particles.hpp"
 #include "writers.hpp"
 
 namespace test_program_test_test_particles {  // one per file: the tests build in batches (CMakeLists.txt)
