@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -216,6 +217,64 @@ TEST_CASE("report: a scene with a single dt says so, writes no table, and summar
         CHECK_FALSE(fs::exists(dir / absent));
     }
     CHECK(files.find("work_precision.csv") != std::string::npos);
+    fs::remove_all(dir);
+}
+
+TEST_CASE("report: every scene its own energy-against-time panel, each panel names its fastest methods") {
+    // Two scenes with different methods: each panel of energy_vs_time draws
+    // that scene's own fastest symplectic and non-symplectic run, never
+    // another scene's methods; the work-precision panels name the fastest
+    // sympl and Odeint method in their titles, each curve its own colour.
+    const fs::path dir = scratch_directory("sympl_test_energy_panels");
+    fs::remove_all(dir);
+    const scene pend = parse_scene(R"(name = "pend"
+system = "pendulum"
+methods = ["blanes_moan_s6", "odeint_rk4"]
+dt = {from = 0.2, to = 0.0125, count = 5}
+t_end = 20
+)",
+                                   "pend.toml");
+    const scene osc = parse_scene(R"(name = "osc"
+system = "harmonic_oscillator"
+methods = ["forest_ruth_4", "kahan_li_8", "odeint_dopri5"]
+dt = {from = 0.4, to = 0.025, count = 5}
+tolerances = [1e-4, 1e-6, 1e-8, 1e-10]
+t_end = 20
+)",
+                                  "osc.toml");
+    std::ostringstream out;
+    run_report({pend, osc}, {dir.string(), true, false, true}, out);
+    const auto rows = read_csv(dir / "energy_vs_time.csv");
+    REQUIRE(rows.size() > 1);
+    std::map<std::string, std::set<std::string>> drawn;  // scene -> methods
+    for (std::size_t i = 1; i < rows.size(); ++i) drawn[rows[i][0]].insert(rows[i][1]);
+    CHECK(drawn["pend"] == std::set<std::string>{"blanes_moan_s6", "odeint_rk4"});
+    REQUIRE(drawn["osc"].size() == 2);
+    CHECK(drawn["osc"].count("odeint_dopri5") == 1);
+    CHECK(drawn["osc"].count("blanes_moan_s6") == 0);
+    const std::string summary = (std::stringstream() << std::ifstream(dir / "summary.md").rdbuf()).str();
+    const std::string section = summary.substr(summary.find("## Energy error against time"));
+    CHECK(section.find("- pend: blanes_moan_s6") != std::string::npos);
+    CHECK(section.find("- osc: ") != std::string::npos);
+    if (have_gnuplot()) {
+        const std::string gp = (std::stringstream() << std::ifstream(dir / "energy_vs_time.gp").rdbuf()).str();
+        CHECK(gp.find("set title 'pend'") != std::string::npos);
+        CHECK(gp.find("set title 'osc'") != std::string::npos);
+        CHECK(fs::exists(dir / "energy_vs_time.png"));
+        CHECK(section.find("energy_vs_time.png") != std::string::npos);
+        const std::string wp = (std::stringstream() << std::ifstream(dir / "work_precision.gp").rdbuf()).str();
+        CHECK(wp.find("'fastest at ") != std::string::npos);
+        CHECK(wp.find(" (sympl), ") != std::string::npos);
+        CHECK(wp.find(" (Odeint)'") != std::string::npos);
+        // The oscillator's three curves in three colours.
+        const std::string panel = wp.substr(wp.find("set title 'osc'"));
+        std::set<std::string> colours;
+        for (auto at = panel.find("lc rgb '"); at != std::string::npos; at = panel.find("lc rgb '", at + 1))
+            colours.insert(panel.substr(at + 8, 7));
+        CHECK(colours.size() == 3);
+        CHECK(fs::exists(dir / "work_precision.png"));
+        CHECK(fs::exists(dir / "energy_precision.png"));
+    }
     fs::remove_all(dir);
 }
 
