@@ -18,6 +18,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <type_traits>
+#include <utility>
 
 #include <Eigen/Core>
 
@@ -306,7 +307,7 @@ void reverse_gradient(const Fn& fn, const Vec& x, Vec& out, typename Vec::Scalar
     for (Eigen::Index i = 0; i < n; ++i) xa[i].value = x[i];
     A y;
     try {
-        y = fn(xa);
+        y = fn(std::as_const(xa));  // read only: the inputs' nodes are written once per size
     } catch (...) {
         tape.abandon();
         throw;
