@@ -36,6 +36,10 @@ void check_scenes(const std::vector<scene>& scenes, const report_options& option
         if (!names.insert(s.name).second)
             throw scene_error(s.source + ": a second scene named '" + s.name + "'; expected each scene name once");
     problems.reserve(scenes.size());  // plans point into problems and scenes: no reallocation after this
+    for (const scene& s : scenes)
+        if (s.test_particles)  // a map of one method, not a comparison of methods
+            throw scene_error(s.source + ": a scene with [test_particles] is a MEGNO map, not a comparison of "
+                              "methods; expected it run by `sympl run`");
     for (const scene& s : scenes) {
         problems.push_back(problem_of(s));
         plans.push_back(plan_runs(s, problems.back(), sweep_use::whole));

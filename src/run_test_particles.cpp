@@ -16,6 +16,7 @@
 #include <thread>
 #include <tuple>
 
+#include <sympl/parallel/ensemble.hpp>
 #include <sympl/planetary/encounters.hpp>
 #include <sympl/planetary/wisdom_holman_stepper.hpp>
 
@@ -65,6 +66,7 @@ std::vector<orbital_elements> read_elements(const std::string& path) {
         if (!(x[0] > 0)) throw scene_error(where + "a = " + shortest(x[0]) + "; expected a semi-major axis > 0 (AU)");
         if (!(x[1] >= 0 && x[1] < 1))
             throw scene_error(where + "e = " + shortest(x[1]) + "; expected an eccentricity in [0, 1) (elliptic orbits)");
+        if (const std::string why = orbit_outside(x[0], x[1]); !why.empty()) throw scene_error(where + why);
         if (double(orbits.size()) >= max_test_particles)
             throw scene_error(where + "more than " + std::to_string(std::size_t(max_test_particles)) +
                               " test particles; expected at most that");
@@ -75,17 +77,6 @@ std::vector<orbital_elements> read_elements(const std::string& path) {
     }
     if (orbits.empty()) throw scene_error(path + ": no orbits; expected a header and at least one line of elements");
     return orbits;
-}
-
-// 0: OMP_NUM_THREADS if it is a count, else every core.
-std::size_t thread_count(int threads) {
-    if (threads > 0) return std::size_t(threads);
-    if (const char* env = std::getenv("OMP_NUM_THREADS")) {
-        int n = 0;
-        const auto [end, ec] = std::from_chars(env, env + std::char_traits<char>::length(env), n);
-        if (ec == std::errc() && *end == '\0' && n >= 1 && n <= 1024) return std::size_t(n);
-    }
-    return std::max(1u, std::thread::hardware_concurrency());
 }
 
 // The osculating heliocentric a and e of a particle at (r, v) about G m_0,
@@ -120,7 +111,7 @@ void run_piece(const planets& p, const std::vector<orbital_elements>& orbits, st
     // Removed, never silently lost: inside a planet's Hill radius, where the
     // splitting about the star no longer holds, or past the escape distance.
     encounter_options lost;
-    lost.radius.push_back(0.005);  // the Sun's radius, 0.00465 AU
+    lost.radius.push_back(test_particle_star_radius);
     for (std::size_t k = 1; k < p.mass.size(); ++k) {
         const double d = std::hypot(x.q[Eigen::Index(3 * k)] - x.q[0], x.q[Eigen::Index(3 * k + 1)] - x.q[1],
                                     x.q[Eigen::Index(3 * k + 2)] - x.q[2]);
@@ -130,6 +121,12 @@ void run_piece(const planets& p, const std::vector<orbital_elements>& orbits, st
     wh.track_encounters(lost, p.t0);
     if (p.megno) wh.start_test_particle_megno();
     wh.steps(x, p.dt, p.steps);
+    // The planets blown up (a scene's own initial state can do it): an error
+    // with the figures, never rows of particles "kept" in a run that ended early.
+    if (!x.q.allFinite() || !x.p.allFinite())
+        throw scene_error("the planets' state became non-finite within " + std::to_string(p.steps) +
+                          " steps of dt = " + shortest(p.dt) + " from t = " + shortest(p.t0) +
+                          "; expected a bound planetary system (check the scene's initial state and dt)");
     const auto& kept = wh.test_particles();
     const std::vector<double> megno = p.megno ? wh.test_particle_megno() : std::vector<double>(kept.size(), NAN);
     const double gm = p.G * p.mass[0];
@@ -155,6 +152,18 @@ void run_piece(const planets& p, const std::vector<orbital_elements>& orbits, st
 
 }  // namespace
 
+std::string orbit_outside(double a, double e) {
+    const std::string orbit = "a = " + shortest(a) + " AU, e = " + shortest(e) + ": ";
+    const std::string expected = "; expected orbits between the star's radius (" +
+                                 shortest(test_particle_star_radius) + " AU) and the escape distance (" +
+                                 shortest(test_particle_escape_distance) + " AU)";
+    if (a * (1 - e) <= test_particle_star_radius)
+        return orbit + "pericentre " + shortest(a * (1 - e)) + " AU, inside the star" + expected;
+    if (a * (1 + e) >= test_particle_escape_distance)
+        return orbit + "apocentre " + shortest(a * (1 + e)) + " AU, past the escape distance" + expected;
+    return "";
+}
+
 std::vector<orbital_elements> test_particle_orbits(const scene& s) {
     const test_particle_spec& tp = *s.test_particles;
     if (!tp.elements_file.empty()) return read_elements(tp.elements_file);
@@ -178,7 +187,7 @@ std::vector<test_particle_row> run_test_particles(const scene& s, const std::vec
     }
     const std::size_t n = base.x0.size() / 2;
     for (std::size_t i = 0; i < n; ++i) p.x0.q[Eigen::Index(i)] = base.x0[i], p.x0.p[Eigen::Index(i)] = base.x0[n + i];
-    const double span_steps = std::ceil((s.t_end - s.t0) / p.dt - 1e-9);
+    const double span_steps = std::max(1.0, std::ceil((s.t_end - s.t0) / p.dt - 1e-9));  // at least one step
     const double total = span_steps * double(orbits.size());
     if (!(span_steps <= max_steps) || !(total <= 1e4 * max_steps))
         throw scene_error(s.source + ": " + shortest(double(orbits.size())) + " test particles over " +
@@ -188,25 +197,10 @@ std::vector<test_particle_row> run_test_particles(const scene& s, const std::vec
     p.steps = std::size_t(span_steps);
     std::vector<test_particle_row> rows(orbits.size());
     const std::size_t pieces = (orbits.size() + piece - 1) / piece;
-    std::atomic<std::size_t> next{0};
-    std::exception_ptr failure;
-    std::mutex failure_lock;
-    const auto work = [&] {
-        for (std::size_t k; (k = next++) < pieces;) {
-            try {
-                run_piece(p, orbits, k * piece, std::min(orbits.size(), (k + 1) * piece), rows);
-            } catch (...) {
-                const std::lock_guard hold(failure_lock);
-                if (!failure) failure = std::current_exception();
-                next = pieces;
-            }
-        }
-    };
-    std::vector<std::thread> team;
-    for (std::size_t t = 1; t < std::min(thread_count(threads), pieces); ++t) team.emplace_back(work);
-    work();
-    for (auto& t : team) t.join();
-    if (failure) std::rethrow_exception(failure);
+    // Each piece writes its own rows: the same numbers for any thread count.
+    for_each_in_parallel(pieces, threads, [&](std::size_t k) {
+        run_piece(p, orbits, k * piece, std::min(orbits.size(), (k + 1) * piece), rows);
+    });
     return rows;
 }
 

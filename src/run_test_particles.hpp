@@ -27,6 +27,13 @@ inline constexpr std::size_t test_particle_piece = 256;
 // splitting (a Kepler orbit about the star perturbed) no longer holds.
 // Farther than escape_distance from the star it has left the system.
 inline constexpr double test_particle_escape_distance = 100;  // AU: three times Neptune's orbit
+// Closer to the star than this a particle has hit it: the Sun's radius, 0.00465 AU.
+inline constexpr double test_particle_star_radius = 0.005;  // AU
+
+// Why an orbit of semi-major axis a (AU) and eccentricity e would be removed
+// at its first step (its pericentre inside the star, its apocentre past the
+// escape distance), or "" for an orbit between them.
+std::string orbit_outside(double a, double e);
 
 struct test_particle_row {
     orbital_elements start;  // as given, angles in radians

@@ -1,8 +1,10 @@
 // A scene's [test_particles] table: massless bodies about the star of a
 // planetary system, run with its planets by one wh(...) method.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
+#include "run_test_particles.hpp"
 #include "scene_reader.hpp"
 
 namespace sympl::app {
@@ -90,6 +92,11 @@ test_particle_spec read_test_particles(const reader& r, const toml::node& node, 
             r.fail(*grid, "the grid has " + std::to_string(tp.a.count) + " x " + std::to_string(tp.e.count) + " = " +
                               std::to_string(tp.a.count * tp.e.count) + " test particles; expected at most " +
                               std::to_string(std::size_t(max_test_particles)));
+        // The grid's extreme orbits: least pericentre and greatest apocentre at the largest e.
+        const double e_max = std::max(tp.e.from, tp.e.to);
+        for (double a_end : {std::min(tp.a.from, tp.a.to), std::max(tp.a.from, tp.a.to)})
+            if (const std::string why = orbit_outside(a_end, e_max); !why.empty())
+                r.fail(*grid, "test_particles.grid holds " + why);
         tp.inclination = read_angle(r, *t, "inclination");
         tp.node = read_angle(r, *t, "node");
         tp.pericentre = read_angle(r, *t, "pericentre");

@@ -85,6 +85,7 @@ std::string summary(const scene& s, const std::vector<test_particle_row>& rows, 
                     std::size_t piece, const std::vector<std::string>& files) {
     const test_particle_spec& tp = *s.test_particles;
     const double dt = (s.methods[0].dt.empty() ? s.dt : s.methods[0].dt)[0];
+    const double steps = std::max(1.0, std::ceil((s.t_end - s.t0) / dt - 1e-9));  // as run_test_particles takes them
     std::ostringstream md;
     md << "# sympl test particles\n\n## " << markdown_cell(s.name) << "\n\n"
        << s.system << " with " << rows.size() << " test particles ("
@@ -93,7 +94,7 @@ std::string summary(const scene& s, const std::vector<test_particle_row>& rows, 
                                           " e in [" + shortest(tp.e.from) + ", " + shortest(tp.e.to) + "]"
                                     : "the orbital elements of " + tp.elements_file)
        << "), " << s.methods[0].name << ", dt = " << shortest(dt) << ", t = " << shortest(s.t0) << " .. "
-       << shortest(s.t_end) << ".\n\n| kept | removed |" << (tp.megno ? " chaotic (MEGNO > 4) |" : "")
+       << shortest(s.t0 + steps * dt) << " (" << format_number(steps, 6) << " whole steps).\n\n| kept | removed |" << (tp.megno ? " chaotic (MEGNO > 4) |" : "")
        << "\n|---|---|" << (tp.megno ? "---|" : "") << "\n| " << c.kept << " | " << c.removed << " |";
     if (tp.megno)
         md << " " << c.chaotic << " (" << fixed(c.measured ? 100.0 * double(c.chaotic) / double(c.measured) : 0, 1)
@@ -107,7 +108,7 @@ std::string summary(const scene& s, const std::vector<test_particle_row>& rows, 
     md << "A particle is removed (status `removed`, the reason and time in the CSV) inside a planet's Hill radius "
           "a (m / 3 m_0)^(1/3), where a Kepler orbit about the star is no longer the main motion, or farther than "
        << shortest(test_particle_escape_distance) << " AU from the star.\n\nParticles run in pieces of "
-       << piece << ", each with the same planets: the files are the same for any thread count. "
+       << piece << ", each with the same planets: test_particles.csv and the map are the same for any thread count. "
        << "Wall time " << fixed(seconds, 2) << " s.\n\nFiles: ";
     for (std::size_t k = 0; k < files.size(); ++k) md << (k ? ", " : "") << files[k];
     md << ", summary.md.\n";

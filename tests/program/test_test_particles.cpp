@@ -17,6 +17,9 @@
 #include "scene.hpp"
 #include "scratch_directory.hpp"
 #include "run_test_particles.hpp"
+#include "format.hpp"
+#include "run_plan.hpp"
+#include "report.hpp"
 #include "writers.hpp"
 
 namespace test_program_test_test_particles {  // one per file: the tests build in batches (CMakeLists.txt)
@@ -77,6 +80,13 @@ TEST_CASE("test particles belt: the scene table's errors, each with its line") {
           "belt.toml:7:21: 'test_particles.grid.a.from' = -1; expected a finite semi-major axis > 0 (AU)");
     CHECK(error_of(replaced(belt, "to = 0.05", "to = 1")) ==
           "belt.toml:7:71: 'test_particles.grid.e.to' = 1; expected an eccentricity in [0, 1) (elliptic orbits)");
+    // Orbits the run would remove at its first step: refused with the figure.
+    CHECK(error_of(replaced(belt, "from = 2.2", "from = 0.005")) ==
+          "belt.toml:7:8: test_particles.grid holds a = 0.005 AU, e = 0.05: pericentre 0.00475 AU, inside the star; "
+          "expected orbits between the star's radius (0.005 AU) and the escape distance (100 AU)");
+    CHECK(error_of(replaced(belt, "to = 5.9", "to = 99")) ==
+          "belt.toml:7:8: test_particles.grid holds a = 99 AU, e = 0.05: apocentre 103.95 AU, past the escape "
+          "distance; expected orbits between the star's radius (0.005 AU) and the escape distance (100 AU)");
     CHECK(error_of(replaced(belt, ", e = {from = 0.0, to = 0.05, count = 2}", "")) ==
           "belt.toml:7:8: 'test_particles.grid' has no 'e'; expected {a = ..., e = ...}");
     CHECK(error_of(replaced(belt, grid, "")) ==
@@ -121,6 +131,9 @@ TEST_CASE("test particles belt: the elements file's errors name it and the line"
           ":1: header 'a,i'; expected 'a,e' and optionally the next of ',inclination,node,pericentre,mean_anomaly' in "
           "that order (angles in degrees)");
     CHECK(orbits_of("a,e\n6.5,0.1\n7,1.5\n") == ":3: e = 1.5; expected an eccentricity in [0, 1) (elliptic orbits)");
+    CHECK(orbits_of("a,e\n6.5,0.1\n120,0\n") ==
+          ":3: a = 120 AU, e = 0: apocentre 120 AU, past the escape distance; expected orbits between the star's "
+          "radius (0.005 AU) and the escape distance (100 AU)");
     CHECK(orbits_of("a,e\n6.5,x\n") == ":2: field 2 'x'; expected a finite number");
     CHECK(orbits_of("a,e\n6.5,0.1,3\n") == ":2: 3 fields; expected 2 as the header names");
     CHECK(orbits_of("a,e\n") == ": no orbits; expected a header and at least one line of elements");
@@ -158,6 +171,38 @@ TEST_CASE("test particles belt: MEGNO about 2 far inside Jupiter, above 4 near i
     CHECK(worst_regular < 0.15);
     CHECK(most_chaotic > 4);
     fs::remove_all(dir);
+}
+
+TEST_CASE("test particles belt: planets that blow up stop the run with the figures, nothing written") {
+    // Jupiter's momentum 1e300: finite, accepted, and non-finite after its first drift.
+    const problem planets = problem_of(parse_scene(belt, "belt.toml"));
+    const std::size_t n = planets.x0.size() / 2;
+    std::string q = "q = [", p = "p = [";
+    for (std::size_t i = 0; i < n; ++i) {
+        q += (i ? ", " : "") + shortest(planets.x0[i]);
+        p += (i ? ", " : "") + (i == 3 ? std::string("1e300") : shortest(planets.x0[n + i]));
+    }
+    const scene s = parse_scene(belt + "[initial]\n" + q + "]\n" + p + "]\n", "belt.toml");
+    const fs::path dir = scratch_directory("sympl_test_belt_blowup");
+    fs::remove_all(dir);
+    std::ostringstream said;
+    CHECK_THROWS_WITH_AS(test_particles_command(s, dir, 1, default_max_steps, said),
+                         doctest::Contains("the planets' state became non-finite within 8000 steps of dt = 20 from "
+                                           "t = 0; expected a bound planetary system"),
+                         sympl::error);
+    CHECK_FALSE(fs::exists(dir / "test_particles.csv"));
+    fs::remove_all(dir);
+}
+
+TEST_CASE("test particles belt: the report refuses a MEGNO map, naming the command that runs it") {
+    const scene s = parse_scene(belt, "belt.toml");
+    std::ostringstream out;
+    CHECK_THROWS_WITH_AS(run_report({s}, {(fs::temp_directory_path() / "sympl_unused_belt_report").string(), true,
+                                          false, false},
+                                    out),
+                         "belt.toml: a scene with [test_particles] is a MEGNO map, not a comparison of methods; "
+                         "expected it run by `sympl run`",
+                         sympl::error);
 }
 
 TEST_CASE("test particles belt: the built-in belt runs by name and is not in the report's set") {
