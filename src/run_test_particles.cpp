@@ -22,6 +22,7 @@
 
 #include "csv_numbers.hpp"
 #include "format.hpp"
+#include "run_plan.hpp"
 #include "systems.hpp"
 
 namespace sympl::app {
@@ -152,6 +153,11 @@ void run_piece(const planets& p, const std::vector<orbital_elements>& orbits, st
 
 }  // namespace
 
+test_particle_span test_particle_span_of(const scene& s) {
+    const double dt = sweep_of(s, s.methods[0])[0];
+    return {dt, std::max(1.0, std::ceil((s.t_end - s.t0) / dt - 1e-9))};
+}
+
 std::string orbit_outside(double a, double e) {
     const std::string orbit = "a = " + shortest(a) + " AU, e = " + shortest(e) + ": ";
     const std::string expected = "; expected orbits between the star's radius (" +
@@ -178,7 +184,7 @@ std::vector<test_particle_row> run_test_particles(const scene& s, const std::vec
     if (piece == 0) throw invalid_argument("run_test_particles: pieces of 0 particles; expected at least 1");
     const problem base = make_problem(s.system, s.parameters, s.q0, s.p0, s.source);
     planets p{base.masses, base.G, phase_space<double>(base.x0.size() / 2), s.methods[0], s.t0,
-              (s.methods[0].dt.empty() ? s.dt : s.methods[0].dt)[0], 0, {}, s.test_particles->megno};
+              test_particle_span_of(s).dt, 0, {}, s.test_particles->megno};
     // Bodies by the registry's coordinate names ("jupiter_x": jupiter), else "body k".
     const std::vector<std::string> columns = state_columns(s.system, base.x0.size() / 2);
     for (std::size_t k = 0; k < p.mass.size(); ++k) {
@@ -187,7 +193,7 @@ std::vector<test_particle_row> run_test_particles(const scene& s, const std::vec
     }
     const std::size_t n = base.x0.size() / 2;
     for (std::size_t i = 0; i < n; ++i) p.x0.q[Eigen::Index(i)] = base.x0[i], p.x0.p[Eigen::Index(i)] = base.x0[n + i];
-    const double span_steps = std::max(1.0, std::ceil((s.t_end - s.t0) / p.dt - 1e-9));  // at least one step
+    const double span_steps = test_particle_span_of(s).steps;
     const double total = span_steps * double(orbits.size());
     if (!(span_steps <= max_steps) || !(total <= 1e4 * max_steps))
         throw scene_error(s.source + ": " + shortest(double(orbits.size())) + " test particles over " +

@@ -35,6 +35,13 @@ inline constexpr double test_particle_star_radius = 0.005;  // AU
 // escape distance), or "" for an orbit between them.
 std::string orbit_outside(double a, double e);
 
+// The run's one step and its count: whole steps of dt, at least one, the
+// first end at or past t_end (t0 + steps dt).
+struct test_particle_span {
+    double dt = 0, steps = 0;
+};
+test_particle_span test_particle_span_of(const scene& s);
+
 struct test_particle_row {
     orbital_elements start;  // as given, angles in radians
     bool kept = true;        // false: removed (reason, at time)

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 
+#include "run_plan.hpp"
 #include "run_test_particles.hpp"
 #include "scene_reader.hpp"
 
@@ -59,7 +60,7 @@ void check_planetary_run(const reader& r, const toml::node& node, const scene& s
         r.fail(methods, "[test_particles] runs one Wisdom-Holman method; expected methods = [\"wh(<table>, ...)\"], "
                         "not " + std::to_string(s.methods.size()) + " method(s) starting with '" + s.methods[0].name +
                         "'");
-    if ((s.methods[0].dt.empty() ? s.dt : s.methods[0].dt).size() != 1)
+    if (sweep_of(s, s.methods[0]).size() != 1)
         r.fail(node, "[test_particles] runs one step size; expected dt = <number>, not a sweep");
     if (s.checkpoint.every_steps)
         r.fail(node, "[test_particles] with 'checkpoint': a map is not resumed; expected one of them");

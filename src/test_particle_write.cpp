@@ -84,8 +84,7 @@ counts tally(const std::vector<test_particle_row>& rows) {
 std::string summary(const scene& s, const std::vector<test_particle_row>& rows, const counts& c, double seconds,
                     std::size_t piece, const std::vector<std::string>& files) {
     const test_particle_spec& tp = *s.test_particles;
-    const double dt = (s.methods[0].dt.empty() ? s.dt : s.methods[0].dt)[0];
-    const double steps = std::max(1.0, std::ceil((s.t_end - s.t0) / dt - 1e-9));  // as run_test_particles takes them
+    const auto [dt, steps] = test_particle_span_of(s);
     std::ostringstream md;
     md << "# sympl test particles\n\n## " << markdown_cell(s.name) << "\n\n"
        << s.system << " with " << rows.size() << " test particles ("
