@@ -95,8 +95,11 @@ template <class S>
 S series_start(S u, S A, S B, S w) {
     const S AA = A * A;
     const S third = 2 * AA - B;
-    const S fourth = A * (5 * B - 5 * AA + w / 12);
-    const S fifth = AA * (14 * AA - 21 * B - w / 2) + B * (3 * B + w / 20);
+    // Products by the rounded 1/12 and 1/20: a division each would cost the
+    // short-drift lanes more than the rest of the starter (a last-bit change
+    // of a starting value, which the solve then corrects).
+    const S fourth = A * (5 * B - 5 * AA + w * (S(1) / 12));
+    const S fifth = AA * (14 * AA - 21 * B - w / 2) + B * (3 * B + w * (S(1) / 20));
     return u + u * (((fifth + fourth) + third) - A);
 }
 
@@ -192,7 +195,7 @@ S quartic_series_step(S d1, S a2d, S a3dd) {
 template <class S>
 S quartic_step(S f, S r, S dr, S ddr) {
     const S per_r = 1 / r, d1 = -f * per_r;
-    const S a2d = dr * per_r / 2 * d1, a3dd = ddr * per_r / 6 * d1 * d1;
+    const S a2d = dr * per_r / 2 * d1, a3dd = ddr * per_r * (S(1) / 6) * d1 * d1;
     if (std::fabs(a2d) <= S(0x1p-16) && std::fabs(a3dd) <= S(0x1p-16)) return quartic_series_step(d1, a2d, a3dd);
     const S d2 = -f / (r + d1 * dr / 2);
     return -f / (r + d2 * dr / 2 + d2 * d2 * ddr / 6);
@@ -208,7 +211,7 @@ template <class S>
 S starting_value(const kepler_orbit<S>& o) {
     {
         const S per_r0 = 1 / o.r0, u = o.h * per_r0;
-        const S A = o.eta0 * u * per_r0 / 2, B = o.zeta0 * u * u * per_r0 / 6, w = o.beta * u * u;
+        const S A = o.eta0 * u * per_r0 / 2, B = o.zeta0 * u * u * per_r0 * (S(1) / 6), w = o.beta * u * u;
         if (std::fabs(A) + std::fabs(B) <= S(0.125) && std::fabs(w) <= 1) return series_start(u, A, B, w);
     }
     S s = o.h / o.r0;

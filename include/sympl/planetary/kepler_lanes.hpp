@@ -79,7 +79,7 @@ template <class S, int W>
         w.beta[l] = 2 * b.gm[l] * w.per_r0[l] - v2;
         w.zeta0[l] = b.gm[l] - w.beta[l] * w.r0[l];
         const S u = h * w.per_r0[l];
-        const S A = w.eta0[l] * u * w.per_r0[l] / 2, B = w.zeta0[l] * u * u * w.per_r0[l] / 6,
+        const S A = w.eta0[l] * u * w.per_r0[l] / 2, B = w.zeta0[l] * u * u * w.per_r0[l] * (S(1) / 6),
                 ww = w.beta[l] * u * u;
         w.s[l] = series_start(u, A, B, ww);
         w.ok[l] = all_of(std::fabs(A) + std::fabs(B) <= S(0.125), std::fabs(ww) <= 2) ? S(1) : S(0);
@@ -93,23 +93,38 @@ template <class S, int W>
 // quarterings), one quartic step in its series form (none where s already
 // passes solve_universal's test), and the equation carried to the new s by
 // the addition theorems (residual_shifted; d = 0 gives back the values at s).
-template <class S, int W>
-[[gnu::always_inline]] inline void short_solve(const lane_bodies<S, W>& b, S h, short_lanes<S, W>& w) {
-    constexpr S eps = std::numeric_limits<S>::epsilon();
-    constexpr int terms = stumpff_terms<S>(kepler_short_x);
+// Stumpff's series in every lane at y = beta s^2, `terms` terms.
+template <int terms, class S, int W>
+[[gnu::always_inline]] inline void short_equation(const lane_bodies<S, W>& b, S h, const S (&y)[W],
+                                                  short_lanes<S, W>& w) {
     for (int l = 0; l < W; ++l) {
-        const S y = w.beta[l] * (w.s[l] * w.s[l]);
-        w.ok[l] = all_of(w.ok[l] != 0, std::fabs(y) <= S(kepler_short_x)) ? S(1) : S(0);
-        const stumpff_values<S> c = stumpff_series(y, terms);
+        const stumpff_values<S> c = stumpff_series(y[l], terms);
         const kepler_terms<S> k = kepler_equation(w.r0[l], w.eta0[l], w.zeta0[l], w.beta[l], b.gm[l], h, w.s[l], c);
         w.c0[l] = c.c0, w.g1[l] = k.g1, w.g2[l] = k.g2, w.f[l] = k.f, w.noise[l] = kepler_noise(k, h);
         w.r[l] = k.r, w.dr[l] = k.dr, w.ddr[l] = k.ddr;
     }
+}
+
+template <class S, int W>
+[[gnu::always_inline]] inline void short_solve(const lane_bodies<S, W>& b, S h, short_lanes<S, W>& w) {
+    constexpr S eps = std::numeric_limits<S>::epsilon();
+    S y[W], largest(0);
+    for (int l = 0; l < W; ++l) {
+        y[l] = w.beta[l] * (w.s[l] * w.s[l]);
+        w.ok[l] = all_of(w.ok[l] != 0, std::fabs(y[l]) <= S(kepler_short_x)) ? S(1) : S(0);
+        largest = w.ok[l] != 0 && std::fabs(y[l]) > largest ? std::fabs(y[l]) : largest;
+    }
+    // As many terms as the group's largest |y| needs (7 at 0.1: a Wisdom-Holman
+    // step of a twentieth of an orbit or less), else the range's 12.
+    if (largest <= S(0.1))
+        short_equation<stumpff_terms<S>(0.1L)>(b, h, y, w);
+    else
+        short_equation<stumpff_terms<S>(kepler_short_x)>(b, h, y, w);
     S per_r[W], step[W], still[W];
     for (int l = 0; l < W; ++l) per_r[l] = 1 / w.r[l];
     for (int l = 0; l < W; ++l) {
         const S d1 = -w.f[l] * per_r[l];
-        const S a2d = w.dr[l] * per_r[l] / 2 * d1, a3dd = w.ddr[l] * per_r[l] / 6 * d1 * d1;
+        const S a2d = w.dr[l] * per_r[l] / 2 * d1, a3dd = w.ddr[l] * per_r[l] * (S(1) / 6) * d1 * d1;
         step[l] = quartic_series_step(d1, a2d, a3dd);
         const bool small = all_of(std::fabs(a2d) <= S(0x1p-16), std::fabs(a3dd) <= S(0x1p-16));
         const bool converged = any_of(std::fabs(w.f[l]) <= w.noise[l], std::fabs(d1) <= 4 * eps * std::fabs(w.s[l]));
@@ -302,18 +317,27 @@ std::size_t kepler_drift_lanes(const kepler_bodies<S>& b, GM gm_of, S h) {
             throw invalid_argument("kepler_drift_all: " + std::to_string(parts[i]->size()) + " values in " + names[i] +
                                    " and " + std::to_string(n) + " in x; expected one per body in each");
     // Every body checked before any moves. The test of check_kepler_input
-    // over all bodies at once (finite: |u| <= max, which a NaN fails); only
-    // if it fails are they checked one by one, for the message.
+    // over all bodies at once, in sums and minima that vectorise: a sum of
+    // magnitudes is finite (<= max, which a NaN fails) when every term is,
+    // and r^2 and GM are positive when their least is. Only if it fails (or
+    // a sum of finite values overflows) are they checked one by one, for the
+    // message.
     {
         constexpr S big = std::numeric_limits<S>::max();
+        constexpr std::size_t L = 4;  // a sum and minima per lane: one reduction in order would not vectorise
+        S size[L] = {}, least_r2[L], least_gm[L];
+        for (std::size_t l = 0; l < L; ++l) least_r2[l] = least_gm[l] = big;
+        for (std::size_t first = 0; first < n; first += L)
+            for (std::size_t l = 0; l < L; ++l) {
+                const std::size_t i = std::min(first + l, n - 1);  // the last group's spare lanes repeat body n - 1
+                const S x = b.x[i], y = b.y[i], z = b.z[i], gm = gm_of(i);
+                const S r2 = x * x + y * y + z * z;
+                size[l] += (std::fabs(b.vx[i]) + std::fabs(b.vy[i]) + std::fabs(b.vz[i])) + (r2 + gm);
+                least_r2[l] = r2 < least_r2[l] ? r2 : least_r2[l];
+                least_gm[l] = gm < least_gm[l] ? gm : least_gm[l];
+            }
         bool fine = std::fabs(h) <= big;
-        for (std::size_t i = 0; i < n; ++i) {
-            const S x = b.x[i], y = b.y[i], z = b.z[i], gm = gm_of(i);
-            const S r2 = x * x + y * y + z * z;
-            fine = all_of(fine, std::fabs(x) <= big, std::fabs(y) <= big, std::fabs(z) <= big,
-                          std::fabs(b.vx[i]) <= big, std::fabs(b.vy[i]) <= big, std::fabs(b.vz[i]) <= big, r2 > 0,
-                          r2 <= big, gm > 0, gm <= big);
-        }
+        for (std::size_t l = 0; l < L; ++l) fine = all_of(fine, size[l] <= big, least_r2[l] > 0, least_gm[l] > 0);
         if (!fine)
             for (std::size_t i = 0; i < n; ++i) {
                 const S r[3] = {b.x[i], b.y[i], b.z[i]}, v[3] = {b.vx[i], b.vy[i], b.vz[i]};
