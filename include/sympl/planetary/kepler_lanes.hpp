@@ -114,10 +114,13 @@ template <class S, int W>
         w.ok[l] = all_of(w.ok[l] != 0, std::fabs(y[l]) <= S(kepler_short_x)) ? S(1) : S(0);
         largest = w.ok[l] != 0 && std::fabs(y[l]) > largest ? std::fabs(y[l]) : largest;
     }
-    // As many terms as the group's largest |y| needs (7 at 0.1: a Wisdom-Holman
-    // step of a twentieth of an orbit or less), else the range's 12.
+    // As many terms as the group's largest |y| needs: for double 7 at 0.1 (a
+    // Wisdom-Holman step of a twentieth of an orbit or less), 9 at 1, else
+    // the range's 12.
     if (largest <= S(0.1))
         short_equation<stumpff_terms<S>(0.1L)>(b, h, y, w);
+    else if (largest <= S(1))
+        short_equation<stumpff_terms<S>(1.0L)>(b, h, y, w);
     else
         short_equation<stumpff_terms<S>(kepler_short_x)>(b, h, y, w);
     S per_r[W], step[W], still[W];
