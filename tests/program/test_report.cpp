@@ -260,6 +260,14 @@ t_end = 20
         const std::string gp = (std::stringstream() << std::ifstream(dir / "energy_vs_time.gp").rdbuf()).str();
         CHECK(gp.find("set title 'pend'") != std::string::npos);
         CHECK(gp.find("set title 'osc'") != std::string::npos);
+        // Each curve its own block of energy_vs_time.dat, in the CSV's order.
+        for (int block = 0; block < 4; ++block)
+            CHECK(gp.find("'energy_vs_time.dat' index " + std::to_string(block) + " ") != std::string::npos);
+        const std::string dat = (std::stringstream() << std::ifstream(dir / "energy_vs_time.dat").rdbuf()).str();
+        std::size_t data_lines = 0;
+        for (std::size_t at = 0; (at = dat.find('\n', at)) != std::string::npos; ++at)
+            data_lines += at > 0 && dat[at - 1] != '\n';
+        CHECK(data_lines == rows.size() - 1);
         CHECK(fs::exists(dir / "energy_vs_time.png"));
         CHECK(section.find("energy_vs_time.png") != std::string::npos);
         const std::string wp = (std::stringstream() << std::ifstream(dir / "work_precision.gp").rdbuf()).str();
