@@ -13,7 +13,7 @@ struct harmonic_oscillator {
 
     template <class V> auto kinetic(const V& p) const { return p.squaredNorm() / (2 * mass); }
     template <class V> auto potential(const V& q) const { return q.squaredNorm() * (0.5 * mass * omega * omega); }
-    template <class V> auto velocity(const V& p) const { return p / mass; }
+    template <class V> auto velocity(const V& p) const { return p * (1 / mass); }  // no division on the step's chain
     template <class V> void force(const V& q, V& f) const { f = q * (-mass * omega * omega); }
 
     // Exact state at time t from x0 at time 0.

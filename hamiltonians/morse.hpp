@@ -28,7 +28,7 @@ struct morse {
         }
         return v;
     }
-    template <class V> auto velocity(const V& p) const { return p / mass; }
+    template <class V> auto velocity(const V& p) const { return p * (1 / mass); }  // no division on the step's chain
     template <class V> void force(const V& q, V& f) const {
         using std::exp;
         f.resize(q.size());

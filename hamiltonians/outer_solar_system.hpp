@@ -38,8 +38,8 @@ struct outer_solar_system {
         return v;
     }
     template <class V> void velocity(const V& p, V& v) const {
-        v.resize(dimension);
-        for (int i = 0; i < bodies; ++i) v.template segment<3>(3 * i) = p.template segment<3>(3 * i) / mass[i];
+        v.resize(dimension);  // products with reciprocals: no division on the step's chain
+        for (int i = 0; i < bodies; ++i) v.template segment<3>(3 * i) = p.template segment<3>(3 * i) * (1 / mass[i]);
     }
     template <class V> void force(const V& q, V& f) const {
         using S = typename V::Scalar;

@@ -22,7 +22,9 @@ struct pendulum {
         for (Eigen::Index i = 0; i < q.size(); ++i) v += 1 - cos(q[i]);
         return v * stiffness();
     }
-    template <class V> auto velocity(const V& p) const { return p / inertia(); }
+    // times the reciprocal: the division leaves the chain force -> velocity -> next
+    // force that a small system's step waits on (docs/rkn.md)
+    template <class V> auto velocity(const V& p) const { return p * (1 / inertia()); }
     template <class V> void force(const V& q, V& f) const {
         using std::sin;
         f.resize(q.size());

@@ -20,7 +20,7 @@ struct two_particle_spring {
         const auto dx = q[0] - q[2], dy = q[1] - q[3];
         return (0.5 * stiffness) * (dx * dx + dy * dy);
     }
-    template <class V> auto velocity(const V& p) const { return p / mass; }
+    template <class V> auto velocity(const V& p) const { return p * (1 / mass); }  // no division on the step's chain
     template <class V> void force(const V& q, V& f) const {
         using S = typename V::Scalar;
         const S fx = S(-stiffness) * (q[0] - q[2]), fy = S(-stiffness) * (q[1] - q[3]);
