@@ -127,6 +127,9 @@ public:
             if (!(v >= 0))
                 throw invalid_argument(who + name + " = " + detail::number_text(v) + "; expected a value >= 0");
         for (double m : mass_) total_gm_ += G_ * S(m);
+        using std::cbrt;
+        for (std::size_t k = 0; k < mass_.size(); ++k) hill_factor_.push_back(cbrt(S(mass_[k]) / (3 * S(mass_[0]))));
+        hill_.resize(mass_.size());
         on_ = true;
     }
 
@@ -150,7 +153,9 @@ public:
         time_ += dt;
         const std::size_t n = p[0].size(), bodies = b[0].size();
         gone.assign(n, 0);
+        for (std::size_t k = 1; k < bodies; ++k) hill_[k] = hill_radius(b, k);  // once per step, not per pair
         for (std::size_t i = 0; i < n; ++i) {
+            if (i % block == 0) mark_pairs(p, b, i, std::min(n, i + block));
             const std::array<S, 3> r{p[0][i] - b[0][0], p[1][i] - b[1][0], p[2][i] - b[2][0]};
             const S star = detail::norm3(r);
             S v2 = 0;
@@ -166,7 +171,8 @@ public:
                 lose(gone, i, id[i], loss_reason::collision, 0, star, energy);
                 continue;
             }
-            for (std::size_t k = 1; k < bodies && !gone[i]; ++k) approach(p, b, i, k, id[i], dt, energy, gone);
+            for (std::size_t k = 1; k < bodies && !gone[i]; ++k)
+                if (look_[(k - 1) * block + i % block]) approach(p, b, i, k, id[i], dt, energy, gone);
             if (gone[i]) continue;
             if (star > S(options_.escape_distance)) lose(gone, i, id[i], loss_reason::escape, 0, star, energy);
             else if (star > S(options_.unbound_distance) && energy > 0)
@@ -178,6 +184,37 @@ public:
     }
 
 private:
+    static constexpr std::size_t block = 256;  // particles whose pairs are marked at a time
+
+    // look_[(k - 1) * block + i - first] for particles [first, last): whether
+    // the pair with body k needs approach(). The interpolant's d.d' at the
+    // step's ends is d0.u0 and d1.u1; most pairs recede or close over the
+    // whole step (no sign change from < 0 to > 0: no minimum inside), and one
+    // whose end is farther than its radius cannot have collided there (the
+    // squares compared with a margin of rounding). A loop per body over
+    // particles in arrays, with no branch and no square root: it vectorises.
+    void mark_pairs(const arrays& p, const arrays& b, std::size_t first, std::size_t last) {
+        const std::size_t bodies = b[0].size();
+        if (bodies < 2) return;
+        look_.resize((bodies - 1) * block);
+        for (std::size_t k = 1; k < bodies; ++k) {
+            const S radius = options_.radius.empty() ? S(0) : S(options_.radius[k]);
+            const S reach2 = radius * radius * (1 + 8 * std::numeric_limits<S>::epsilon());
+            S q0[6], q1[6];
+            for (std::size_t c = 0; c < 6; ++c) q0[c] = previous_bodies_[c][k], q1[c] = b[c][k];
+            char* look = look_.data() + (k - 1) * block;
+            for (std::size_t i = first; i < last; ++i) {
+                const S a0 = previous_[0][i] - q0[0], a1 = previous_[1][i] - q0[1], a2 = previous_[2][i] - q0[2];
+                const S g0 = a0 * (previous_[3][i] - q0[3]) + a1 * (previous_[4][i] - q0[4]) +
+                             a2 * (previous_[5][i] - q0[5]);
+                const S e0 = p[0][i] - q1[0], e1 = p[1][i] - q1[1], e2 = p[2][i] - q1[2];
+                const S g1 = e0 * (p[3][i] - q1[3]) + e1 * (p[4][i] - q1[4]) + e2 * (p[5][i] - q1[5]);
+                const S end2 = e0 * e0 + e1 * e1 + e2 * e2;
+                look[i - first] = char((g0 < 0) & (g1 > 0)) | char(end2 <= reach2);
+            }
+        }
+    }
+
     // Particle i and body k over the step: the closest approach located
     // where d.d' changes sign from < 0 to > 0, logged, and a collision.
     void approach(const arrays& p, const arrays& b, std::size_t i, std::size_t k, std::uint64_t id, S dt, S energy,
@@ -188,14 +225,16 @@ private:
             s.d0[c] = previous_[c][i] - previous_bodies_[c][k], s.u0[c] = previous_[c + 3][i] - previous_bodies_[c + 3][k];
             s.d1[c] = p[c][i] - b[c][k], s.u1[c] = p[c + 3][i] - b[c + 3][k];
         }
-        const S end = detail::norm3(s.d1);
         const S radius = options_.radius.empty() ? S(0) : S(options_.radius[k]);
-        const S hill = hill_radius(b, k);
+        const S g0 = s.d0[0] * s.u0[0] + s.d0[1] * s.u0[1] + s.d0[2] * s.u0[2];  // d.d' at the ends (mark_pairs)
+        const S g1 = s.d1[0] * s.u1[0] + s.d1[1] * s.u1[1] + s.d1[2] * s.u1[2];
+        const bool minimum_inside = g0 < 0 && g1 > 0;
+        const S end = detail::norm3(s.d1);
+        const S hill = hill_[k];
         const S reach = std::max(radius, S(options_.log_within_hill) * hill);
         S closest = end;
-        const S g0 = s.closing(0), g1 = s.closing(1);
         const S speed = std::max(detail::norm3(s.u0), detail::norm3(s.u1));
-        if (g0 < 0 && g1 > 0 && std::min(detail::norm3(s.d0), end) - speed * dt * 2 < reach) {
+        if (minimum_inside && std::min(detail::norm3(s.d0), end) - speed * dt * 2 < reach) {
             const S th = detail::brent_root([&](S t) { return s.closing(t); }, S(0), S(1), g0, g1,
                                             S(4) * std::numeric_limits<S>::epsilon());
             closest = detail::norm3(s.at(th));
@@ -209,7 +248,7 @@ private:
     // a (m_k / 3 m_0)^(1/3), a body k's distance from the star at the step's end.
     S hill_radius(const arrays& b, std::size_t k) const {
         const std::array<S, 3> r{b[0][k] - b[0][0], b[1][k] - b[1][0], b[2][k] - b[2][0]};
-        return detail::norm3(r) * std::cbrt(S(mass_[k]) / (3 * S(mass_[0])));
+        return detail::norm3(r) * hill_factor_[k];
     }
 
     void lose(std::vector<char>& gone, std::size_t i, std::uint64_t id, loss_reason why, std::size_t body, S distance,
@@ -222,6 +261,8 @@ private:
     encounter_options options_;
     std::vector<double> mass_;
     S G_ = 0, total_gm_ = 0, time_ = 0;
+    std::vector<S> hill_factor_, hill_;  // (m_k / 3 m_0)^(1/3), and the Hill radii at this step's end
+    std::vector<char> look_;            // mark_pairs' marks for the current block
     arrays previous_, previous_bodies_;
     std::vector<encounter_record<S>> encounters_;
     std::vector<loss_record<S>> losses_;
