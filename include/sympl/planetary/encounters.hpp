@@ -192,7 +192,8 @@ private:
     // whole step (no sign change from < 0 to > 0: no minimum inside), and one
     // whose end is farther than its radius cannot have collided there (the
     // squares compared with a margin of rounding). A loop per body over
-    // particles in arrays, with no branch and no square root: it vectorises.
+    // particles in arrays, with no branch and no square root (GCC 12 does not
+    // vectorise it yet: docs/planetary.md).
     void mark_pairs(const arrays& p, const arrays& b, std::size_t first, std::size_t last) {
         const std::size_t bodies = b[0].size();
         if (bodies < 2) return;
