@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
 #include <CLI/CLI.hpp>
 
 #include <sympl/core/error.hpp>
@@ -169,7 +170,14 @@ int main(int argc, char** argv) {
     const auto fail = [&](const char* what) {
         const std::string who =
             ranks.size > 1 ? " (rank " + std::to_string(ranks.rank) + " of " + std::to_string(ranks.size) + ")" : "";
-        std::cerr << "sympl" << who << ": " << what << "\n";
+        // One write(2), so that Open MPI's abort banner from another rank cannot
+        // land inside the line (it did in CI: "sympl (rank 0 of 3)<banner>: ...").
+        const std::string line = "sympl" + who + ": " + what + "\n";
+        for (std::size_t done = 0; done < line.size();) {
+            const ssize_t n = ::write(2, line.data() + done, line.size() - done);
+            if (n <= 0) break;
+            done += static_cast<std::size_t>(n);
+        }
         if (ranks.size > 1) ranks.abort_all(2);
         return 2;
     };
