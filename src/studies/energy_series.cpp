@@ -87,6 +87,14 @@ void energy_series_study(const std::vector<scene>& scenes, const std::vector<rep
         dat->stream().precision(8);
     }
     int blocks = 0;
+    std::vector<std::string> left_out;  // scenes without a panel, each with why
+    const auto open_section = [&] {
+        if (panels.empty() && left_out.empty())
+            md << "## Energy error against time\n\nPer scene, the symplectic run that reaches a max energy error of "
+                  "1e-8 fastest (or the tightest level above it one reaches), against the non-symplectic method fastest at that level (or the nearest "
+                  "level it reaches), at its run of about the same time: equal cost (energy_vs_time.csv"
+               << (plots ? ", energy_vs_time.png" : "") << "; log time axis).\n\n";
+    };
     for (const scene& s : scenes) {
         if (s.ensemble) continue;  // the chaos map: one dt, its own section
         // Level 1e-8, or the tightest above it a symplectic method reaches (below it rounding, not the
@@ -96,16 +104,20 @@ void energy_series_study(const std::vector<scene>& scenes, const std::vector<rep
         double level = 0;
         for (double l : {1e-4, 1e-6, 1e-8})
             if (const auto f = fastest_at(rows, s, l, true)) ours = f, level = l;
-        if (!ours) continue;
+        if (!ours) {
+            const bool has_energy = std::any_of(rows.begin(), rows.end(), [&](const report_row& r) {
+                return r.s == &s && r.r.max_energy_error >= 0;
+            });
+            open_section();
+            left_out.push_back(markdown_cell(s.name) + (has_energy ? " (no symplectic run reaches a max energy error of 1e-4)"
+                                                                   : " (no energy: the system is not Hamiltonian)"));
+            continue;
+        }
         const report_row* a = nearest_run(rows, *ours->first, ours->second);
         std::optional<std::pair<const scene_method*, double>> theirs;
         for (double l = level; l <= 1e-4 * 1.0001 && !theirs; l *= 100) theirs = fastest_at(rows, s, l, false);
         const report_row* b = theirs ? nearest_run(rows, *theirs->first, a->r.seconds) : nullptr;
-        if (panels.empty())
-            md << "## Energy error against time\n\nPer scene, the symplectic run that reaches a max energy error of "
-                  "1e-8 fastest (or the tightest level above it one reaches), against the non-symplectic method fastest at that level (or the nearest "
-                  "level it reaches), at its run of about the same time: equal cost (energy_vs_time.csv"
-               << (plots ? ", energy_vs_time.png" : "") << "; log time axis).\n\n";
+        open_section();
         panel p{&s, {}, {}};
         for (const report_row* r : {a, b}) {
             if (!r) continue;
@@ -132,7 +144,12 @@ void energy_series_study(const std::vector<scene>& scenes, const std::vector<rep
         panels.push_back(std::move(p));
     }
     csv.commit();
-    if (!panels.empty()) md << "\n";
+    if (!left_out.empty()) {
+        md << "- No panel: ";
+        for (std::size_t i = 0; i < left_out.size(); ++i) md << (i ? ", " : "") << left_out[i];
+        md << ".\n";
+    }
+    if (!panels.empty() || !left_out.empty()) md << "\n";
     if (!plots) return;
     dat->commit();
     atomic_file gp(dir / "energy_vs_time.gp");

@@ -242,8 +242,16 @@ tolerances = [1e-4, 1e-6, 1e-8, 1e-10]
 t_end = 20
 )",
                                   "osc.toml");
+    // Not Hamiltonian: no energy, so no panel, and the summary says why.
+    const scene damped = parse_scene(R"(name = "damped"
+system = "damped_oscillator"
+methods = ["leapfrog_kdk", "odeint_rk4"]
+dt = {from = 0.2, to = 0.05, count = 3}
+t_end = 20
+)",
+                                     "damped.toml");
     std::ostringstream out;
-    run_report({pend, osc}, {dir.string(), true, false, true}, out);
+    run_report({pend, damped, osc}, {dir.string(), true, false, true}, out);
     const auto rows = read_csv(dir / "energy_vs_time.csv");
     REQUIRE(rows.size() > 1);
     std::map<std::string, std::set<std::string>> drawn;  // scene -> methods
@@ -256,6 +264,8 @@ t_end = 20
     const std::string section = summary.substr(summary.find("## Energy error against time"));
     CHECK(section.find("- pend: blanes_moan_s6") != std::string::npos);
     CHECK(section.find("- osc: ") != std::string::npos);
+    CHECK(section.find("- No panel: damped (no energy: the system is not Hamiltonian).") != std::string::npos);
+    CHECK(drawn.count("damped") == 0);
     if (have_gnuplot()) {
         const std::string gp = (std::stringstream() << std::ifstream(dir / "energy_vs_time.gp").rdbuf()).str();
         CHECK(gp.find("set title 'pend'") != std::string::npos);
