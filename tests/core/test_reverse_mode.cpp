@@ -108,8 +108,9 @@ TEST_CASE("reverse mode: each elementary function's derivative to rounding") {
 }
 
 TEST_CASE("reverse mode: a function of a compound argument records the argument once") {
-    // f = x2 / sqrt(x0^2 + x1^2 + 1/2): the argument is one statement (x0, x1),
-    // the quotient another (x2, and the argument with sqrt's derivative).
+    // f = x2 / sqrt(x0^2 + x1^2 + 1/2): the argument is one statement (its
+    // nodes emitted x0, x0, x1, x1 are written x0, x1, x1: reverse_tape.hpp);
+    // the quotient is two single nodes, x2 and the argument, kept as a pair.
     Vec in(3), out;
     in << 0.3, -0.7, 1.9;
     reverse_gradient([](const auto& v) { using std::sqrt; return v[2] / sqrt(v[0] * v[0] + v[1] * v[1] + 0.5); }, in, out);
@@ -118,8 +119,46 @@ TEST_CASE("reverse mode: a function of a compound argument records the argument 
     CHECK(std::abs(out[1] - 1.9 * 0.7 * s / r2) <= 8 * eps * 1.9 * 0.7 * s / r2);
     CHECK(std::abs(out[2] - s) <= 4 * eps * s);
     const auto& tape = detail::reverse_tape<double>::of_this_thread();
-    CHECK(tape.statements() == 1 + 3 + 2);  // the constants' node, the inputs, two statements
-    CHECK(tape.operations() == 2 + 2);
+    CHECK(tape.statements() == 1 + 3 + 1);  // the constants' node, the inputs, one statement
+    CHECK(tape.operations() == 3);
+}
+
+TEST_CASE("reverse mode: a value of two nodes records nothing, and nodes met again later add up") {
+    // 3 x0 - 2 x1 depends on two nodes: no statement at all, the output is the
+    // pair itself and the sweep seeds both.
+    Vec in(3), out;
+    in << 0.3, -0.7, 1.9;
+    reverse_gradient([](const auto& v) { return 3.0 * v[0] - 2.0 * v[1]; }, in, out);
+    const auto& tape = detail::reverse_tape<double>::of_this_thread();
+    CHECK(tape.statements() == 1 + 3);
+    CHECK(tape.operations() == 0);
+    CHECK(out[0] == 3.0);
+    CHECK(out[1] == -2.0);
+    CHECK(out[2] == 0.0);
+    // Each input twice, more than two nodes: a statement whose edges name a
+    // node more than once, summed by the sweep.
+    reverse_gradient([](const auto& v) { return v[0] * v[1] + v[1] * v[2] + v[2] * v[0]; }, in, out);
+    CHECK(std::abs(out[0] - (in[1] + in[2])) <= 4 * eps * std::abs(in[1] + in[2]));
+    CHECK(std::abs(out[1] - (in[0] + in[2])) <= 4 * eps * std::abs(in[0] + in[2]));
+    CHECK(std::abs(out[2] - (in[1] + in[0])) <= 4 * eps * std::abs(in[1] + in[0]));
+    // A pair used in two statements, and a running sum swept through the
+    // adjoint the previous edge wrote: d/dx of sum_k (x0 - x1)^k x2, k = 1..4.
+    reverse_gradient(
+        [](const auto& v) {
+            using S = typename std::decay_t<decltype(v)>::Scalar;
+            const S d = v[0] - v[1];
+            S sum(0), power(1);
+            for (int k = 1; k <= 4; ++k) {
+                power = power * d;
+                sum += power * v[2];
+            }
+            return sum;
+        },
+        in, out);
+    const double d = in[0] - in[1], dsum = 1 + 2 * d + 3 * d * d + 4 * d * d * d, sum = d + d * d + d * d * d + d * d * d * d;
+    CHECK(std::abs(out[0] - dsum * in[2]) <= 16 * eps * std::abs(dsum * in[2]));
+    CHECK(std::abs(out[1] + dsum * in[2]) <= 16 * eps * std::abs(dsum * in[2]));
+    CHECK(std::abs(out[2] - sum) <= 16 * eps * std::abs(sum));
 }
 
 TEST_CASE("reverse mode: a variable exponent, and branches follow the value") {
@@ -168,8 +207,8 @@ TEST_CASE("reverse mode: one recording per gradient, its length linear in the di
     // The cost claim behind reverse mode: the tape grows as the number of
     // statements of one evaluation of V, never as n evaluations (forward
     // mode's cost). fpu_beta::potential assigns three values per bond (r, r2
-    // and the sum), each one statement however many operations it holds, but
-    // r2 = r * r depends on r alone and is kept as r with its derivative.
+    // and the sum), but r = q[i] - q[i-1] and r2 = r * r depend on two nodes
+    // and are kept as that pair with their partials: one statement per bond.
     auto& tape = detail::reverse_tape<double>::of_this_thread();
     auto per_particle = [&](Eigen::Index n) {
         Vec g;
@@ -178,9 +217,9 @@ TEST_CASE("reverse mode: one recording per gradient, its length linear in the di
     };
     const auto [statements_small, operations_small] = per_particle(100);
     const auto [statements_large, operations_large] = per_particle(100000);
-    CHECK(statements_large == doctest::Approx(1 + 2).epsilon(1e-4));  // the input, and r and the sum per bond
-    // r = a - b: two; v += r2 / 2 + r2 * r2 * k: v, and r (as r2) three times in a row.
-    CHECK(operations_large == doctest::Approx(2 + 2).epsilon(1e-4));
+    CHECK(statements_large == doctest::Approx(1 + 1).epsilon(1e-4));  // the input, and the sum per bond
+    // v += r2 / 2 + r2 * r2 * k: v, and the pair (q[i], q[i-1]) three times in a row.
+    CHECK(operations_large == doctest::Approx(3).epsilon(1e-4));
     CHECK(std::abs(statements_large - statements_small) <= 3.0 / 100);  // the ends' bonds only
     CHECK(std::abs(operations_large - operations_small) <= 4.0 / 100);
 }

@@ -1,6 +1,6 @@
 #pragma once
 // Reverse-mode automatic differentiation: a taped number is a value and the
-// statement of this thread's tape (reverse_tape.hpp) that computed it. One
+// nodes of this thread's tape (reverse_tape.hpp) it was computed from. One
 // evaluation of f records its statements; one backward sweep then gives the
 // whole gradient, at a cost that is a small multiple of evaluating f whatever
 // the dimension (Griewank & Walther, Evaluating Derivatives, 2nd ed. 2008,
@@ -31,45 +31,50 @@ concept reverse_expression = requires { typename E::reverse_value; };
 template <class U>
 concept plain_number = std::is_arithmetic_v<U>;
 
-// A value on the tape: `scale` times its node's value, to first order, where
-// the node is the statement it was computed by (0 for a constant). A value
-// that depends on one earlier node only (r * r, sqrt(x), k * x) records no
-// statement: it keeps that node, with its derivative as the scale, and each use
-// passes the derivative on (the chain rule taken at recording time). The FPU
-// chain's r2 = r * r is such a value, a quarter of its tape.
+// A value on the tape: to first order, `scale` times its node's value plus
+// `scale2` times node2's, where a node is an input or a statement that was
+// recorded (node 0 stands for constants; node2 0 for none). A value computed
+// from one pair of nodes (r = a - b, r * r, sqrt(r)) records no statement: it
+// keeps the nodes with their derivatives as scales, and each use passes them
+// on (the chain rule taken at recording time; reverse_tape.hpp). The FPU chain's
+// bond r = q[i] - q[i-1] and its square are such values: a bond costs one
+// statement of three edges (the sum, and the bond's two ends).
 template <class T>
 struct taped {
     static_assert(std::is_floating_point_v<T>, "sympl::taped records plain floating-point arithmetic");
     using reverse_value = T;
-    static constexpr std::size_t leaves = 1;  // taped numbers an expression of it refers to, at most
+    static constexpr std::size_t leaves = 2;  // nodes an expression of it emits, at most
     T value{};
     T scale = 1;
+    T scale2 = 0;
     std::int32_t node = 0;
+    std::int32_t node2 = 0;
 
     taped() = default;
     template <plain_number U>
     taped(U v) : value(static_cast<T>(v)) {}
     taped(T v, std::int32_t n) : value(v), node(n) {}
-    // An expression becomes one statement: its partials with respect to the
-    // taped numbers it was computed from; or none, if they are one number.
+    // An expression of three or more distinct nodes becomes one statement: its
+    // partials with respect to the nodes it was computed from.
     template <reverse_expression E>
         requires(!std::same_as<E, taped> && std::same_as<typename E::reverse_value, T>)
     taped(const E& e) : value(e.value) {
-        if constexpr (E::leaves == 1) {
-            detail::one_operand<T> w;
+        if constexpr (E::leaves <= 2) {
+            typename detail::reverse_tape<T>::writer w{nullptr, 0};
             e.emit(w, T(1));
-            node = w.node;
-            scale = w.partial;
+            detail::reverse_tape<T>::keep_held(w, *this);
         } else {
             auto* tape = detail::reverse_tape<T>::active();
             if (tape == nullptr) return;
             auto w = tape->open_statement(E::leaves);
             e.emit(w, T(1));
-            tape->close_statement(w, node, scale);
+            tape->close_statement(w, *this);
         }
     }
     template <class Tape>
-    void emit(Tape& tape, T multiplier) const { tape.emit(node, multiplier * scale); }
+    void emit(Tape& tape, T multiplier) const {
+        tape.emit(node, multiplier * scale, node2, multiplier * scale2);
+    }
 
     // Never a plain number silently: that would cut the derivative's path.
     operator T() const {
@@ -196,15 +201,15 @@ template <class A, class B> requires reverse_comparable<A, B>
 auto operator<=>(const A& a, const B& b) { return reverse_primal(a) <=> reverse_primal(b); }
 
 // ---- elementary functions, found by argument-dependent lookup (also by Eigen) ----
-// A function of a compound argument, sqrt(dx * dx + dy * dy + dz * dz), records
-// the argument as a statement of its own and keeps the function as a scale on
-// it (taped above). Nesting the argument's whole expression instead made
+// A function of a compound argument, sqrt(dx * dx + dy * dy + dz * dz), makes
+// the argument a taped value first (a statement, if it depends on more than two
+// nodes) and keeps the function as its scale. Nesting the whole expression made
 // every enclosing expression carry and copy it: GCC then kept the trees in
 // memory, and a softened pair potential, -1 / sqrt(r2 + e2), cost 47 ns per
 // pair where recording r2 first cost 26 ns (one more statement, one more edge).
 template <reverse_expression A>
 auto function_argument(const A& a) {
-    if constexpr (A::leaves > 1) return taped<reverse_value_of<A>>(a);
+    if constexpr (A::leaves > 2) return taped<reverse_value_of<A>>(a);
     else return a;
 }
 #define SYMPL_REVERSE_UNARY(name, value_expr, derivative_expr)                          \
@@ -312,7 +317,7 @@ void reverse_gradient(const Fn& fn, const Vec& x, Vec& out, typename Vec::Scalar
         tape.abandon();
         throw;
     }
-    tape.sweep(y.node, factor * y.scale);
+    tape.sweep(y.node, factor * y.scale, y.node2, factor * y.scale2);
     if (out.size() != n) out.resize(n);
     for (Eigen::Index i = 0; i < n; ++i) out[i] = tape.input_adjoint(std::size_t(i));
 }

@@ -10,20 +10,13 @@
 // node it is taken of and the node it is taken with respect to. The backward
 // sweep walks the edges last to first and does one multiply-add per edge,
 //     adjoint[with_respect_to] += partial * adjoint[of],
-// with no branch on what the edge came from and no loop per statement: an
-// edge's `of` is final when the sweep reaches it, since every edge that feeds
-// it belongs to a later statement. Edges stream through memory (written
-// forwards, read backwards); the adjoints are an array of their own, one per
-// node, zeroed by one fill before the sweep. One capacity check per
-// statement; one tape per thread and scalar type, reused: no allocation once
-// warm.
-//
-// What it costs (FPU chain, 2 statements and 4 edges per particle; 2026-11-27,
-// loaded 2-core machine, least of many calls): recording 3.8 ns and the sweep
-// 4.0 ns per particle. Both wait on memory rather than on arithmetic: each
-// statement stores the tape's end and the next one loads it back (GCC keeps
-// it in memory across statements), and the sweep carries the running sum's
-// adjoint from one particle to the next through a store and a load.
+// with no loop per statement: an edge's `of` is final when the sweep reaches
+// it, since every edge that feeds it belongs to a later statement. Edges
+// stream through memory (written forwards, read backwards); the adjoints are
+// an array of their own, one per node, zeroed by one fill before the sweep.
+// One capacity check per statement; one tape per thread and scalar type,
+// reused: no allocation once warm. What it costs, and what was tried:
+// docs/speed.md, "What each way of writing H costs".
 #include <algorithm>
 #include <cstdint>
 #include <string>
@@ -39,18 +32,6 @@ struct tape_edge {
     T partial;
     std::int32_t with_respect_to;
     std::int32_t of;
-};
-
-// Where an expression of one taped operand emits its single partial: in
-// registers, never on the tape (such a value records no statement).
-template <class T>
-struct one_operand {
-    std::int32_t node = 0;
-    T partial = T(1);
-    void emit(std::int32_t n, T p) {
-        node = n;
-        partial = p;
-    }
 };
 
 template <class T>
@@ -86,27 +67,42 @@ public:
 
     // Writes one statement's edges through a cursor that stays in registers
     // while the expression emits (a member of the tape would be stored and
-    // reloaded at every operation). A node met twice in a row within a
-    // statement (r * r) is one edge: one update of its adjoint instead of two
-    // that would wait on each other. The latest edge is held back in
-    // registers, so that a statement of one node writes nothing.
+    // reloaded at every operation). Each operand emits its pair of nodes (the
+    // second 0 for a single node); the latest pair is held back in registers,
+    // and the same pair again (r * r), or a single node after a held single
+    // node (a - b), adds to it instead of opening edges. A statement that ends
+    // holding everything it emitted writes nothing: its value is the held pair
+    // with its partials (reverse_mode.hpp's taped). Anything else is written
+    // out, a node possibly twice (x0 * x0 + x1 * x1 gives x0, x1, x1: the
+    // sweep adds both; a test for it cost 8% of the FPU chain's gradient). An
+    // expression of one taped leaf is written by a writer with no cursor: it
+    // emits once and can never flush.
     struct writer {
         tape_edge<T>* cursor;
         std::int32_t of;
-        std::int32_t last = -1;  // the held edge's node; none yet
-        T held = T(0);           // and its partial
-        void emit(std::int32_t node, T partial) {
-            // Nodes are never negative: told, the first emit of a statement
-            // compiles to no test against `last`, and the others to no test
-            // of whether an edge is held.
+        std::int32_t held = -1, held2 = 0;  // the held pair of nodes (held2 0: one node); none yet
+        T partial = T(0), partial2 = T(0);
+        // A taped value is a pair of nodes, the second 0 when it is one node.
+        void emit(std::int32_t node, T p, std::int32_t node2, T p2) {
             if (node < 0) __builtin_unreachable();
-            if (node == last) {
-                held += partial;
+            if (node == held && node2 == held2) {
+                partial += p;
+                partial2 += p2;
                 return;
             }
-            if (last >= 0) *cursor++ = {held, last, of};
-            last = node;
-            held = partial;
+            if (held2 == 0 && node2 == 0 && held >= 0) {  // two single nodes: one pair
+                held2 = node;
+                partial2 = p;
+                return;
+            }
+            if (held >= 0) {
+                *cursor++ = {partial, held, of};
+                if (held2 != 0) *cursor++ = {partial2, held2, of};
+            }
+            held = node;
+            partial = p;
+            held2 = node2;
+            partial2 = p2;
         }
     };
     // Room for a statement of at most `count` edges.
@@ -117,35 +113,57 @@ public:
             reserve(count);
         return {end_, std::int32_t(nodes_)};
     }
-    // Ends the statement `w` wrote: `node` and `scale` of the value it
-    // computed. A statement of one edge (its operands one node, or constants)
-    // is not kept: its value is that edge's node, scaled by the edge's partial
-    // (reverse_mode.hpp's taped).
-    void close_statement(const writer& w, std::int32_t& node, T& scale) {
-        if (w.cursor != end_) [[likely]] {
-            *w.cursor = {w.held, w.last, w.of};
-            end_ = w.cursor + 1;
-            node = std::int32_t(nodes_++);
-            scale = T(1);
+    // Ends the statement `w` wrote. Of three or more distinct nodes, it is
+    // kept: the value is its node, with scale 1. Of two or fewer, it is not:
+    // the value is the held nodes and partials (node 0 for none).
+    template <class Value>
+    void close_statement(const writer& w, Value& v) {
+        if (w.cursor != end_) {
+            tape_edge<T>* c = w.cursor;
+            *c++ = {w.partial, w.held, w.of};
+            if (w.held2 != 0) *c++ = {w.partial2, w.held2, w.of};
+            end_ = c;
+            v.node = std::int32_t(nodes_++);
+            v.scale = T(1);
+            v.node2 = 0;
+            v.scale2 = T(0);
         } else {
-            node = w.last;
-            scale = w.held;
+            keep_held(w, v);
         }
     }
+    template <class Value>
+    static void keep_held(const writer& w, Value& v) {
+        v.node = w.held;
+        v.scale = w.partial;
+        v.node2 = w.held2;
+        v.scale2 = w.partial2;
+    }
 
-    // Sweeps backwards from `output`, whose adjoint is `seed`, and ends the
-    // recording; the adjoint of input i (0-based) is then input_adjoint(i).
+    // Sweeps backwards from the output, the nodes `output` and `output2` with
+    // adjoints `seed` and `seed2` (a value of two nodes not recorded), and ends
+    // the recording; the adjoint of input i (0-based) is then input_adjoint(i).
     // The adjoints are zeroed here in one pass, not one store per statement.
-    void sweep(std::int32_t output, T seed = T(1)) {
+    void sweep(std::int32_t output, T seed = T(1), std::int32_t output2 = 0, T seed2 = T(0)) {
         active() = nullptr;
         T* adjoint = adjoints_data_;
         std::fill(adjoint, adjoint + nodes_, T(0));
-        adjoint[output] = seed;  // output 0: a constant, whose adjoint no edge reads
+        adjoint[output] = seed;  // node 0: a constant, whose adjoint no edge reads
+        adjoint[output2] += seed2;
         const tape_edge<T>* first = edges_.data();
-#pragma GCC unroll 2
+        // The adjoint of the statement being swept, and of the node written
+        // last, are kept in registers: a running sum's next statement reads
+        // the adjoint its last edge wrote without a store and a load between.
+        std::int32_t of = -1, written = -1;
+        T of_adjoint = T(0), written_adjoint = T(0);
         for (const tape_edge<T>* e = end_; e != first;) {
             --e;
-            adjoint[e->with_respect_to] += e->partial * adjoint[e->of];
+            if (e->of != of) {
+                of = e->of;
+                of_adjoint = of == written ? written_adjoint : adjoint[of];
+            }
+            written = e->with_respect_to;
+            written_adjoint = adjoint[written] + e->partial * of_adjoint;
+            adjoint[written] = written_adjoint;
         }
     }
     void abandon() { active() = nullptr; }
