@@ -170,6 +170,37 @@ TEST_CASE("encounters: particles that collide, escape or leave unbound are remov
     }
 }
 
+TEST_CASE("encounters: a particle in the star or not finite is removed, the rest screened out untouched") {
+    // The checks run only on particles a vector screen cannot clear
+    // (encounters.hpp, mark_quiet): a particle inside the star's radius and
+    // one whose energy overflows (v = 1e200: v^2 is inf) must not be cleared,
+    // 64 ordinary ones must.
+    wisdom_holman_stepper<State> wh({1.0, planet_mass}, 1.0, method("leapfrog_kdk"));
+    test_particle_set<double> s;
+    s.add({0.005, 0, 0}, {0, 14.1, 0});                                    // 0: inside the star (radius 0.01)
+    s.add({0, 1.2, 0}, {1e200, 0, 0});                                     // 1: energy not finite
+    for (int k = 0; k < 64; ++k) {
+        const double r = 1.3 + 0.01 * k, phase = 0.1 * k;
+        s.add({r * std::cos(phase), r * std::sin(phase), 0}, {-std::sin(phase) / std::sqrt(r), std::cos(phase) / std::sqrt(r), 0});
+    }
+    wh.set_test_particles(s);
+    encounter_options e;
+    e.radius = {0.01, 1e-6};
+    e.escape_distance = 100;
+    e.unbound_distance = 50;
+    wh.track_encounters(e);
+    State x = system_start();
+    wh.steps(x, 0.01, 10);
+    const auto& lost = wh.encounters().losses();
+    REQUIRE(lost.size() == 2);
+    CHECK(lost[0].particle == 0);
+    CHECK(lost[0].reason == loss_reason::collision);
+    CHECK(lost[0].body == 0);
+    CHECK(lost[1].particle == 1);
+    CHECK(lost[1].reason == loss_reason::non_finite);
+    CHECK(wh.test_particles().size() == 64);
+}
+
 TEST_CASE("encounters: with a corrector and MEGNO, a removed particle's MEGNO goes with it") {
     wisdom_holman_options o;
     o.corrector_order = 5;

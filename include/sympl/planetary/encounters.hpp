@@ -20,6 +20,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "../core/error.hpp"
 #include "../drivers/events.hpp"
 #include "test_particles.hpp"
@@ -155,7 +157,11 @@ public:
         gone.assign(n, 0);
         for (std::size_t k = 1; k < bodies; ++k) hill_[k] = hill_radius(b, k);  // once per step, not per pair
         for (std::size_t i = 0; i < n; ++i) {
-            if (i % block == 0) mark_pairs(p, b, i, std::min(n, i + block));
+            if (i % block == 0) {
+                mark_pairs(p, b, i, std::min(n, i + block));
+                mark_quiet(p, b, i, std::min(n, i + block));
+            }
+            if (quiet_[i % block] != 0) continue;
             const std::array<S, 3> r{p[0][i] - b[0][0], p[1][i] - b[1][0], p[2][i] - b[2][0]};
             const S star = detail::norm3(r);
             S v2 = 0;
@@ -172,7 +178,7 @@ public:
                 continue;
             }
             for (std::size_t k = 1; k < bodies && !gone[i]; ++k)
-                if (look_[(k - 1) * block + i % block]) approach(p, b, i, k, id[i], dt, energy, gone);
+                if (look_[(k - 1) * block + i % block] != 0) approach(p, b, i, k, id[i], dt, energy, gone);
             if (gone[i]) continue;
             if (star > S(options_.escape_distance)) lose(gone, i, id[i], loss_reason::escape, 0, star, energy);
             else if (star > S(options_.unbound_distance) && energy > 0)
@@ -192,8 +198,8 @@ private:
     // whole step (no sign change from < 0 to > 0: no minimum inside), and one
     // whose end is farther than its radius cannot have collided there (the
     // squares compared with a margin of rounding). A loop per body over
-    // particles in arrays, with no branch and no square root (GCC 12 does not
-    // vectorise it yet: docs/planetary.md).
+    // particles in arrays, with no branch and no square root, in SIMD lanes
+    // (docs/planetary.md).
     void mark_pairs(const arrays& p, const arrays& b, std::size_t first, std::size_t last) {
         const std::size_t bodies = b[0].size();
         if (bodies < 2) return;
@@ -201,18 +207,69 @@ private:
         for (std::size_t k = 1; k < bodies; ++k) {
             const S radius = options_.radius.empty() ? S(0) : S(options_.radius[k]);
             const S reach2 = radius * radius * (1 + 8 * std::numeric_limits<S>::epsilon());
-            S q0[6], q1[6];
-            for (std::size_t c = 0; c < 6; ++c) q0[c] = previous_bodies_[c][k], q1[c] = b[c][k];
-            char* look = look_.data() + (k - 1) * block;
+            const S q0[6] = {previous_bodies_[0][k], previous_bodies_[1][k], previous_bodies_[2][k],
+                             previous_bodies_[3][k], previous_bodies_[4][k], previous_bodies_[5][k]};
+            const S q1[6] = {b[0][k], b[1][k], b[2][k], b[3][k], b[4][k], b[5][k]};
+            const S *x0 = previous_[0].data(), *x1 = previous_[1].data(), *x2 = previous_[2].data(),
+                    *u0 = previous_[3].data(), *u1 = previous_[4].data(), *u2 = previous_[5].data();
+            const S *y0 = p[0].data(), *y1 = p[1].data(), *y2 = p[2].data(), *v0 = p[3].data(), *v1 = p[4].data(),
+                    *v2 = p[5].data();
+            S* look = look_.data() + (k - 1) * block;
+            // The mark is a number chosen by a select: GCC 12 vectorises that
+            // with SSE2, not a bool converted to an integer. The marks do not
+            // alias the coordinates, and ivdep says so (13 arrays are more
+            // than GCC checks at run time).
+#pragma GCC ivdep
             for (std::size_t i = first; i < last; ++i) {
-                const S a0 = previous_[0][i] - q0[0], a1 = previous_[1][i] - q0[1], a2 = previous_[2][i] - q0[2];
-                const S g0 = a0 * (previous_[3][i] - q0[3]) + a1 * (previous_[4][i] - q0[4]) +
-                             a2 * (previous_[5][i] - q0[5]);
-                const S e0 = p[0][i] - q1[0], e1 = p[1][i] - q1[1], e2 = p[2][i] - q1[2];
-                const S g1 = e0 * (p[3][i] - q1[3]) + e1 * (p[4][i] - q1[4]) + e2 * (p[5][i] - q1[5]);
+                const S a0 = x0[i] - q0[0], a1 = x1[i] - q0[1], a2 = x2[i] - q0[2];
+                const S g0 = a0 * (u0[i] - q0[3]) + a1 * (u1[i] - q0[4]) + a2 * (u2[i] - q0[5]);
+                const S e0 = y0[i] - q1[0], e1 = y1[i] - q1[1], e2 = y2[i] - q1[2];
+                const S g1 = e0 * (v0[i] - q1[3]) + e1 * (v1[i] - q1[4]) + e2 * (v2[i] - q1[5]);
                 const S end2 = e0 * e0 + e1 * e1 + e2 * e2;
-                look[i - first] = char((g0 < 0) & (g1 > 0)) | char(end2 <= reach2);
+                look[i - first] = ((g0 < 0) & (g1 > 0)) | (end2 <= reach2) ? S(1) : S(0);
             }
+        }
+    }
+
+    // quiet_[i - first] = 1 for the particles [first, last) that no check
+    // below can remove or log: finite, outside the star's radius, inside the
+    // escape distance, inside the unbound distance or bound, and no pair
+    // marked, each with a margin of rounding (a vector sqrt or a contracted
+    // product may differ from the scalar one by an ulp). The others, a few per
+    // step, take every check; all particles used to, a square root, a division
+    // and seven tests each, scalar.
+    void mark_quiet(const arrays& p, const arrays& b, std::size_t first, std::size_t last) {
+        quiet_.resize(block);
+        const S margin = 16 * std::numeric_limits<S>::epsilon();
+        const S inner = (options_.radius.empty() ? S(0) : S(options_.radius[0])) * (1 + margin);
+        const S escape = S(options_.escape_distance) * (1 - margin), unbound = S(options_.unbound_distance) * (1 - margin);
+        const S c0 = b[0][0], c1 = b[1][0], c2 = b[2][0], largest = std::numeric_limits<S>::max();
+        const S *x0 = p[0].data(), *x1 = p[1].data(), *x2 = p[2].data(), *u0 = p[3].data(), *u1 = p[4].data(),
+                *u2 = p[5].data();
+        S* quiet = quiet_.data();
+        const std::size_t m = last - first;
+        star_.resize(block);
+#pragma GCC ivdep
+        for (std::size_t i = first; i < last; ++i) {
+            const S d0 = x0[i] - c0, d1 = x1[i] - c1, d2 = x2[i] - c2;
+            star_[i - first] = d0 * d0 + d1 * d1 + d2 * d2;
+        }
+        // Eigen's packet square root: std::sqrt's loop keeps a branch to set errno.
+        using column = Eigen::Array<S, Eigen::Dynamic, 1>;
+        Eigen::Map<column>(star_.data(), Eigen::Index(m)) = Eigen::Map<const column>(star_.data(), Eigen::Index(m)).sqrt();
+#pragma GCC ivdep
+        for (std::size_t i = first; i < last; ++i) {
+            const S star = star_[i - first];
+            const S kinetic = (u0[i] * u0[i] + u1[i] * u1[i] + u2[i] * u2[i]) / 2, potential = total_gm_ / star;
+            // The energy finite, and bound with room to spare; NaN fails every test.
+            quiet[i - first] = (star > inner) & (star <= escape) & (kinetic <= largest) & (potential <= largest) &
+                                       ((star <= unbound) | (kinetic < potential * (1 - margin)))
+                                   ? S(1)
+                                   : S(0);
+        }
+        for (std::size_t k = 1; k < b[0].size(); ++k) {
+            const S* look = look_.data() + (k - 1) * block;
+            for (std::size_t i = 0; i < m; ++i) quiet[i] = look[i] != 0 ? S(0) : quiet[i];
         }
     }
 
@@ -263,7 +320,9 @@ private:
     std::vector<double> mass_;
     S G_ = 0, total_gm_ = 0, time_ = 0;
     std::vector<S> hill_factor_, hill_;  // (m_k / 3 m_0)^(1/3), and the Hill radii at this step's end
-    std::vector<char> look_;            // mark_pairs' marks for the current block
+    std::vector<S> look_;               // mark_pairs' marks for the current block (1: look)
+    std::vector<S> quiet_;              // mark_quiet's marks for the current block (1: no check can act)
+    std::vector<S> star_;               // and its distances from the star
     arrays previous_, previous_bodies_;
     std::vector<encounter_record<S>> encounters_;
     std::vector<loss_record<S>> losses_;
