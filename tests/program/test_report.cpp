@@ -250,8 +250,18 @@ dt = {from = 0.2, to = 0.05, count = 3}
 t_end = 20
 )",
                                      "damped.toml");
+    // A charged particle: the cylindrical splitting is symplectic, Boris's
+    // pusher is not (it preserves volume); each on its side of the panel.
+    const scene charged = parse_scene(R"toml(name = "charged"
+system = "charged_particle"
+parameters = {confinement = 0.2}
+methods = ["cylindrical_split(blanes_moan_srkn6b)", "boris"]
+dt = {from = 0.2, to = 0.0125, count = 5}
+t_end = 10
+)toml",
+                                      "charged.toml");
     std::ostringstream out;
-    run_report({pend, damped, osc}, {dir.string(), true, false, true}, out);
+    run_report({pend, damped, osc, charged}, {dir.string(), true, false, true}, out);
     const auto rows = read_csv(dir / "energy_vs_time.csv");
     REQUIRE(rows.size() > 1);
     std::map<std::string, std::set<std::string>> drawn;  // scene -> methods
@@ -266,12 +276,14 @@ t_end = 20
     CHECK(section.find("- osc: ") != std::string::npos);
     CHECK(section.find("- No panel: damped (no energy: the system is not Hamiltonian).") != std::string::npos);
     CHECK(drawn.count("damped") == 0);
+    CHECK(section.find("- charged: cylindrical_split(blanes_moan_srkn6b), ") != std::string::npos);
+    CHECK(drawn["charged"] == std::set<std::string>{"cylindrical_split(blanes_moan_srkn6b)", "boris"});
     if (have_gnuplot()) {
         const std::string gp = (std::stringstream() << std::ifstream(dir / "energy_vs_time.gp").rdbuf()).str();
         CHECK(gp.find("set title 'pend'") != std::string::npos);
         CHECK(gp.find("set title 'osc'") != std::string::npos);
         // Each curve its own block of energy_vs_time.dat, in the CSV's order.
-        for (int block = 0; block < 4; ++block)
+        for (int block = 0; block < 6; ++block)
             CHECK(gp.find("'energy_vs_time.dat' index " + std::to_string(block) + " ") != std::string::npos);
         const std::string dat = (std::stringstream() << std::ifstream(dir / "energy_vs_time.dat").rdbuf()).str();
         std::size_t data_lines = 0;
