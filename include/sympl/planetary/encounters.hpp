@@ -155,6 +155,7 @@ public:
         time_ += dt;
         const std::size_t n = p[0].size(), bodies = b[0].size();
         gone.assign(n, 0);
+        const std::size_t losses_before = losses_.size();
         for (std::size_t k = 1; k < bodies; ++k) hill_[k] = hill_radius(b, k);  // once per step, not per pair
         for (std::size_t i = 0; i < n; ++i) {
             if (i % block == 0) {
@@ -186,7 +187,8 @@ public:
         }
         previous_ = p;
         previous_bodies_ = b;
-        for (std::size_t c = 0; c < 6; ++c) detail::remove_marked(previous_[c], gone);
+        if (losses_.size() != losses_before)  // most steps lose none: no pass over the arrays
+            for (std::size_t c = 0; c < 6; ++c) detail::remove_marked(previous_[c], gone);
     }
 
 private:
