@@ -26,10 +26,13 @@ static_assert([] {
 const std::array<method_kind_entry, method_kind_count>& method_kinds() { return method_kind_entries; }
 
 classic_facts classic_at(std::size_t index) {
-    classic_facts facts{"", needs::any, false};
+    classic_facts facts{"", needs::any, false, false};
     std::size_t k = 0;
-    std::apply([&](const auto&... c) { ((k++ == index ? void(facts = {c.name, c.requirement, c.history}) : void()), ...); },
-               classic_methods);
+    std::apply(
+        [&](const auto&... c) {
+            ((k++ == index ? void(facts = {c.name, c.requirement, c.history, c.symplectic}) : void()), ...);
+        },
+        classic_methods);
     if (index >= classic_method_count) throw invalid_argument("classic method index " + std::to_string(index) + " out of range");
     return facts;
 }
@@ -296,6 +299,15 @@ std::optional<method_spec> resolve_method(const std::string& name, const std::ma
             return m;
         }
     return std::nullopt;
+}
+
+bool symplectic(const method_spec& m) {
+    if (m.extrapolation_columns > 0) return false;
+    if (m.kind == method_kind::classic) return classic_at(m.classic).symplectic;
+    const method_kind_entry& row = entry_of(m.kind);
+    for (const named_method& n : row.members)
+        if (n.parameters == m.parameters) return n.symplectic;
+    return row.symplectic;
 }
 
 std::string why_not_resumable(const method_spec& m) {

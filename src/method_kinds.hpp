@@ -54,6 +54,7 @@ struct named_method {
     const char* name;
     method_parameters parameters;
     const char* description;        // for listings
+    bool symplectic = false;         // keeps the symplectic form on a Hamiltonian system (the energy figure)
     const char* not_resumable = "";  // why this member cannot resume bit for bit ("" when it can)
 };
 
@@ -66,6 +67,10 @@ struct method_kind_entry {
     bool fictitious_time = false;          // dt is LogH's fictitious step, not a step in physical time
     bool odeint = false;                   // a Boost.Odeint stepper (the report's competitors)
     needs requirement = needs::any;        // classic methods: per method, see classic_methods
+    // Its methods keep the symplectic form on a Hamiltonian system, bar the
+    // extrapolated ones; a family's members and the classic steppers say it
+    // for themselves (symplectic(method_spec)).
+    bool symplectic = false;
     const char* not_resumable = "";        // why no method of the kind can resume bit for bit ("" when they can)
     const char* controlled_not_resumable = "";    // why its step-size controlled members cannot
     const char* extrapolated_not_resumable = "";  // why its extrapolated(...) methods cannot
@@ -85,14 +90,20 @@ inline constexpr std::array odeint_members{
 };
 
 inline constexpr std::array gauss_members{
-    named_method{"gauss_2", {.stages = 1},
-                 "implicit Gauss-Legendre collocation, s = 1 (the implicit midpoint rule), order 2: symplectic for "
-                 "any H(q, p), separable or not"},
-    named_method{"gauss_4", {.stages = 2}, "implicit Gauss-Legendre collocation, s = 2, order 4, any H(q, p)"},
-    named_method{"gauss_6", {.stages = 3}, "implicit Gauss-Legendre collocation, s = 3, order 6, any H(q, p)"},
-    named_method{"gauss_8", {.stages = 4}, "implicit Gauss-Legendre collocation, s = 4, order 8, any H(q, p)"},
-    named_method{"gauss_10", {.stages = 5}, "implicit Gauss-Legendre collocation, s = 5, order 10, any H(q, p)"},
-    named_method{"gauss_12", {.stages = 6}, "implicit Gauss-Legendre collocation, s = 6, order 12, any H(q, p)"},
+    named_method{.name = "gauss_2", .parameters = {.stages = 1},
+                 .description = "implicit Gauss-Legendre collocation, s = 1 (the implicit midpoint rule), order 2: "
+                                "symplectic for any H(q, p), separable or not",
+                 .symplectic = true},
+    named_method{.name = "gauss_4", .parameters = {.stages = 2},
+                 .description = "implicit Gauss-Legendre collocation, s = 2, order 4, any H(q, p)", .symplectic = true},
+    named_method{.name = "gauss_6", .parameters = {.stages = 3},
+                 .description = "implicit Gauss-Legendre collocation, s = 3, order 6, any H(q, p)", .symplectic = true},
+    named_method{.name = "gauss_8", .parameters = {.stages = 4},
+                 .description = "implicit Gauss-Legendre collocation, s = 4, order 8, any H(q, p)", .symplectic = true},
+    named_method{.name = "gauss_10", .parameters = {.stages = 5},
+                 .description = "implicit Gauss-Legendre collocation, s = 5, order 10, any H(q, p)", .symplectic = true},
+    named_method{.name = "gauss_12", .parameters = {.stages = 6},
+                 .description = "implicit Gauss-Legendre collocation, s = 6, order 12, any H(q, p)", .symplectic = true},
 };
 
 inline constexpr std::array dprkn_members{
@@ -121,33 +132,37 @@ inline constexpr std::array charged_members{
 
 // The registry, in the order of method_kind.
 inline constexpr std::array<method_kind_entry, method_kind_count> method_kind_entries{{
-    {.kind = method_kind::table, .label = "table", .requirement = needs::splitting,
+    {.kind = method_kind::table, .label = "table", .requirement = needs::splitting, .symplectic = true,
      .description = "a splitting table: the catalog's (sympl tables) or a scene's own [[table]], on a separable "
                     "Hamiltonian or, with exact damped drifts, on a damped, driven system; extrapolated(<symmetric "
                     "table>, k) extrapolates it over k runs of 1..k steps (order p + 2(k - 1)); compensated(<table>) sums "
                     "the updates with Kahan's compensation (both on separable Hamiltonians); a force-gradient table "
                     "(chin_4a, ...) also needs the force's derivative"},
     {.kind = method_kind::processed, .label = "processed", .requirement = needs::separable_hamiltonian,
+     .symplectic = true,
      .description = "a processed method (blanes_2001_p6, ...): a kernel every step, its processor only where the state is "
                     "looked at; every output is the true state"},
     {.kind = method_kind::logh, .label = "logh", .fictitious_time = true, .requirement = needs::negative_potential,
+     .symplectic = true,
      .description = "logh(<table>): the table in LogH fictitious time (Mikkola & Tanikawa 1999); dt is the fictitious "
                     "step; extrapolated(logh(<symmetric table>), k) as above"},
     {.kind = method_kind::classic, .label = "classic",
      .description = "a classic stepper of Gould & Tobochnik or Sandvik"},
     {.kind = method_kind::odeint, .label = "odeint", .members = odeint_members, .odeint = true},
-    {.kind = method_kind::gauss, .label = "gauss", .members = gauss_members, .requirement = needs::general_hamiltonian},
-    {.kind = method_kind::tao, .label = "tao", .requirement = needs::general_hamiltonian,
+    {.kind = method_kind::gauss, .label = "gauss", .members = gauss_members, .requirement = needs::general_hamiltonian,
+     .symplectic = true},
+    {.kind = method_kind::tao, .label = "tao", .requirement = needs::general_hamiltonian, .symplectic = true,
      .description = "tao(<table>[, omega = W]): Tao's explicit method for any H(q, p) (extended phase space; the "
                     "binding omega unless given 4 times the fastest frequency at the start, in each component's units), "
                     "composed by a symmetric composition of leapfrog steps (leapfrog_kdk, yoshida_4, yoshida_6, ...); "
                     "symplectic in the extended space only"},
     {.kind = method_kind::semiexplicit, .label = "semiexplicit", .requirement = needs::general_hamiltonian,
+     .symplectic = true,
      .description = "semiexplicit(<table>): Jayawardana & Ohsawa's semiexplicit method for any H(q, p), composed "
                     "by a symmetric composition of leapfrog steps; symplectic and symmetric"},
     {.kind = method_kind::dprkn, .label = "rkn_nonsymplectic", .members = dprkn_members,
      .requirement = needs::quadratic_kinetic},
-    {.kind = method_kind::wisdom_holman, .label = "wisdom_holman", .requirement = needs::planetary,
+    {.kind = method_kind::wisdom_holman, .label = "wisdom_holman", .requirement = needs::planetary, .symplectic = true,
      .description = "wh(<table>[, corrector = K][, kernel = composition|lazy][, coordinates = jacobi]): "
                     "Wisdom-Holman splitting of a planetary system, the table's drifts the exact Kepler flow about "
                     "the star (Jacobi: about the interior masses), its kicks the planets' interaction "
@@ -155,7 +170,7 @@ inline constexpr std::array<method_kind_entry, method_kind_count> method_kind_en
                     "here); a symmetric table takes a symplectic corrector of order K = 3, 5, 7, 9, 11 or 17, "
                     "leapfrog_dkd a kernel too (lazy: Jacobi coordinates only)"},
     {.kind = method_kind::charged, .label = "charged", .members = charged_members,
-     .requirement = needs::charged_particle,
+     .requirement = needs::charged_particle, .symplectic = true,  // the splittings; not its members, the pushers
      .description = "boris, boris(relativistic = true), cartesian_split(<table>), cylindrical_split(<table>): a charged "
                     "particle's pushers and explicit symplectic splittings (sympl/charged/); cartesian_split composes "
                     "the exactly solvable parts (p_i - e A_i)^2/2m by a symmetric composition of leapfrog steps "
@@ -180,20 +195,28 @@ struct classic_method {
     // Carries a history between steps (a half-step momentum, the previous
     // position): a checkpoint holds it as the stepper's carried list.
     bool history = false;
+    bool symplectic = false;  // on a separable Hamiltonian (docs/classic.md)
     static constexpr needs requirement = Needs;
 };
 
 // The classic steppers, by name; a method_spec of kind classic holds its index here.
 inline constexpr std::tuple classic_methods{
     classic_method<euler, needs::any>{"euler", "Euler, first order"},
-    classic_method<euler_cromer, needs::any>{"euler_cromer", "Euler-Cromer (Gould & Tobochnik), first order, symplectic"},
-    classic_method<half_step, needs::any>{"half_step", "half-step algorithm (Gould & Tobochnik eq. 3.37)", true},
+    classic_method<euler_cromer, needs::any>{.name = "euler_cromer",
+                                             .description = "Euler-Cromer (Gould & Tobochnik), first order, symplectic",
+                                             .symplectic = true},
+    classic_method<half_step, needs::any>{.name = "half_step",
+                                          .description = "half-step algorithm (Gould & Tobochnik eq. 3.37)",
+                                          .history = true, .symplectic = true},
     classic_method<euler_richardson, needs::any>{"euler_richardson", "Euler-Richardson (Gould & Tobochnik eqs. 3.43-3.44)"},
     classic_method<rk2, needs::any>{"rk2", "midpoint Runge-Kutta (Sandvik's lecture notes) = euler_richardson"},
     classic_method<rk4, needs::any>{"rk4", "classic fourth-order Runge-Kutta (Sandvik's lecture notes)"},
-    classic_method<velocity_verlet, needs::any>{"velocity_verlet", "velocity Verlet (Gould & Tobochnik eq. 3.48)", true},
-    classic_method<leapfrog_two_step, needs::newtonian>{"leapfrog_two_step",
-                                                        "two-step leapfrog (Gould & Tobochnik eq. 3.47)", true},
+    classic_method<velocity_verlet, needs::any>{.name = "velocity_verlet",
+                                                .description = "velocity Verlet (Gould & Tobochnik eq. 3.48)",
+                                                .history = true, .symplectic = true},
+    classic_method<leapfrog_two_step, needs::newtonian>{.name = "leapfrog_two_step",
+                                                        .description = "two-step leapfrog (Gould & Tobochnik eq. 3.47)",
+                                                        .history = true, .symplectic = true},
     classic_method<damped_leapfrog, needs::damped_split>{"damped_leapfrog",
                                                          "leapfrog with velocity-dependent damping (Sandvik)", true},
     classic_method<predictor_corrector, needs::any>{"predictor_corrector",
@@ -206,6 +229,7 @@ struct classic_facts {
     const char* name;
     needs requirement;
     bool history;
+    bool symplectic;
 };
 classic_facts classic_at(std::size_t index);
 
@@ -267,6 +291,12 @@ wisdom_holman_options wisdom_holman_options_of(const method_spec& m);
 // can): tables (force-gradient ones too), plain or compensated, and the
 // classic steppers without history.
 std::string why_not_resumable(const method_spec& m);
+
+// Whether `m` keeps the symplectic form on a Hamiltonian system (the energy
+// figure draws the fastest symplectic method against the fastest other one):
+// its member's or classic stepper's flag, else its kind's; never an
+// extrapolated method (a combination of runs of different step counts).
+bool symplectic(const method_spec& m);
 
 // What `m` needs of a system.
 needs requirement_of(const method_spec& m);

@@ -18,22 +18,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Symplectic: tables (plain, processed, compensated), LogH, Gauss-Legendre,
-// the semi-explicit and Tao compositions, Wisdom-Holman, the charged
-// particle's splittings; not extrapolation, Boris's pusher (it preserves
-// volume, not the symplectic form), Runge-Kutta(-Nystrom) or Odeint.
-bool symplectic(const scene_method& m) {
-    if (m.extrapolation_columns > 0) return false;
-    switch (m.kind) {
-        case method_kind::table: case method_kind::processed: case method_kind::logh: case method_kind::gauss:
-        case method_kind::tao: case method_kind::semiexplicit: case method_kind::wisdom_holman: return true;
-        case method_kind::charged:
-            return m.parameters.scheme == charged_scheme::cartesian_split ||
-                   m.parameters.scheme == charged_scheme::cylindrical_split;
-        default: return false;
-    }
-}
-
 struct contender {
     const report_row* row = nullptr;  // the run drawn
     double level = 0;                 // the energy level its method reaches fastest

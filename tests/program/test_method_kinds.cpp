@@ -1,12 +1,18 @@
 // The method-kind registry: how names resolve and what each kind needs.
 #include <doctest/doctest.h>
 
+#include <array>
 #include <cmath>
+#include <cstddef>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
+#include <sympl/core/equations_of_motion.hpp>
+#include <sympl/core/phase_space.hpp>
 #include <sympl/methods/catalog.hpp>
+#include <sympl/methods/classic_steppers.hpp>
 
 #include "checkpoint.hpp"
 #include "method_kinds.hpp"
@@ -456,6 +462,76 @@ TEST_CASE("method kinds: a mistyped table or option inside a pattern names the n
     CHECK(did_you_mean_method("logh(leapfrg_dkd)", {}) == "did you mean 'logh(leapfrog_dkd)'? ");
     CHECK(did_you_mean_method("compensated(blanes_moan_s1O)", {}) == "did you mean 'compensated(blanes_moan_s10)'? ");
     CHECK(did_you_mean_method("logh(nothing_like_a_table_at_all)", {}).empty());
+}
+
+// |det J| - 1 of four steps of dt = 0.3 of a classic stepper on the pendulum
+// x'' = -sin x from (1, 0.5), J by central differences of 1e-5: a map of the
+// plane is symplectic exactly when it keeps area (det J = 1).
+template <template <class, class> class Stepper>
+double area_defect_of_four_steps() {
+    using State = sympl::phase_space<double, 1>;
+    const auto pendulum = sympl::make_newtonian([](const auto& x, auto) { return (-x.array().sin()).matrix().eval(); });
+    auto end = [&](double x0, double v0) {
+        Stepper<decltype(pendulum), State> stepper(pendulum);  // fresh: each start begins its own history
+        State s;
+        s.q << x0;
+        s.p << v0;
+        for (int k = 0; k < 4; ++k) stepper.step(s, 0.3 * k, 0.3);
+        return std::array<double, 2>{s.q[0], s.p[0]};
+    };
+    const double d = 1e-5;
+    const auto xp = end(1 + d, 0.5), xm = end(1 - d, 0.5), vp = end(1, 0.5 + d), vm = end(1, 0.5 - d);
+    const double j00 = (xp[0] - xm[0]) / (2 * d), j10 = (xp[1] - xm[1]) / (2 * d);
+    const double j01 = (vp[0] - vm[0]) / (2 * d), j11 = (vp[1] - vm[1]) / (2 * d);
+    return std::fabs(j00 * j11 - j01 * j10 - 1);
+}
+
+TEST_CASE("method kinds: a classic stepper is flagged symplectic exactly when its map keeps area") {
+    // Central differences of 1e-5 leave about 1e-10 (their truncation) plus 2e-11
+    // (rounding over the difference); a non-symplectic stepper's defect over four
+    // steps of 0.3 is of order dt^(p+1): 1.9e-6 for rk4, the smallest.
+    std::size_t index = 0;
+    std::apply(
+        [&](const auto&... method) {
+            auto check = [&](const auto& m) {
+                const bool flagged = classic_at(index).symplectic;
+                method_spec spec;
+                spec.name = m.name;
+                spec.kind = method_kind::classic;
+                spec.classic = index++;
+                CHECK(symplectic(spec) == flagged);
+                if constexpr (std::decay_t<decltype(m)>::requirement != needs::damped_split) {
+                    const double defect = [&]<template <class, class> class S, needs N>(
+                                              const classic_method<S, N>&) { return area_defect_of_four_steps<S>(); }(m);
+                    INFO(m.name << ": |det J - 1| = " << defect);
+                    CHECK((defect < 1e-8) == flagged);
+                    CHECK((defect > 1e-7 || defect < 1e-8));  // clearly one or the other
+                } else {
+                    CHECK_FALSE(flagged);  // a damped system's stepper: no symplectic form to keep
+                }
+            };
+            (check(method), ...);
+        },
+        classic_methods);
+}
+
+TEST_CASE("method kinds: which methods the registry calls symplectic") {
+    auto named = [](const std::string& name) {
+        const auto m = resolve_method(name, {});
+        REQUIRE(m.has_value());
+        return symplectic(*m);
+    };
+    for (const char* yes : {"leapfrog_kdk", "yoshida_6", "blanes_2001_p6", "logh(leapfrog_dkd)", "gauss_4",
+                            "tao(yoshida_6)", "semiexplicit(yoshida_4)", "wh(leapfrog_kdk)", "cartesian_split(yoshida_6)",
+                            "cylindrical_split(blanes_moan_srkn11b)", "compensated(yoshida_6)", "velocity_verlet"}) {
+        INFO(yes);
+        CHECK(named(yes));
+    }
+    for (const char* no : {"odeint_rk4", "odeint_bulirsch_stoer", "dprkn12", "dprkn8_controlled", "boris",
+                           "boris(relativistic = true)", "extrapolated(leapfrog_kdk, 3)", "rk4", "euler"}) {
+        INFO(no);
+        CHECK_FALSE(named(no));
+    }
 }
 
 }  // namespace test_program_test_method_kinds
