@@ -104,10 +104,14 @@ void add_runs(CLI::App& app, command_line& c) {
                          "at any rank and thread count");
 }
 
-// `sympl run`: a scene's methods, or its [test_particles] map (files in --out).
-void run_one(const command_line& c) {
+// `sympl run`: a scene's methods, or its [test_particles] map (files in
+// --out; under mpirun its pieces shared among the ranks).
+void run_one(const command_line& c, const exchange& ranks) {
     const scene s = load_scene(c.scene_file);
     if (!s.test_particles) {
+        if (ranks.size > 1)
+            throw sympl::error("sympl run shares only a [test_particles] map among MPI ranks; " + s.source +
+                               " has none: expected one process (sympl ensemble and sympl report run over ranks)");
         if (c.run->count("--out") || c.run->count("--threads"))
             throw sympl::error("--out and --threads are for a scene with [test_particles]; " + s.source +
                                " has none (its outputs go to output.directory)");
@@ -116,7 +120,7 @@ void run_one(const command_line& c) {
     if (c.json || c.resume)
         throw sympl::error(s.source + " has [test_particles]: its run writes files in --out; expected neither --json "
                                       "nor --resume");
-    test_particles_command(s, c.run_out, c.threads, c.max_steps, std::cout);
+    test_particles_command(s, c.run_out, c.threads, c.max_steps, ranks, std::cout);
 }
 
 // The chosen command; its exit code.
@@ -124,10 +128,10 @@ int dispatch(command_line& c, exchange& ranks) {
     if (*c.tables) print_tables(c.json);
     if (*c.systems) print_systems(c.json);
     if (*c.check) return check_table(c.kick, c.drift, c.convention, c.json);
-    if (*c.ensemble || *c.report) ranks = process_exchange();
+    if (*c.ensemble || *c.report || *c.run) ranks = process_exchange();
     if (*c.ensemble)
         ensemble_command(load_scene(c.scene_file), c.ensemble_out, c.threads, c.max_steps, ranks, std::cout, c.resume);
-    if (*c.run) run_one(c);
+    if (*c.run) run_one(c, ranks);
     if (*c.report) {
         std::vector<scene> scenes;
         for (const auto& f : c.report_files) scenes.push_back(load_scene(f, c.report_settings.quick));
@@ -165,7 +169,7 @@ int main(int argc, char** argv) {
         std::cerr << "sympl: " << e.what() << "\n";
         return 2;
     }
-    exchange ranks;  // the MPI ranks of `ensemble` and `report` under mpirun
+    exchange ranks;  // the MPI ranks of `ensemble`, `report` and a [test_particles] `run` under mpirun
     // Under MPI an error on one rank ends them all (the others may wait for it in a gather).
     const auto fail = [&](const char* what) {
         const std::string who =

@@ -1,13 +1,15 @@
 // A scene's [test_particles] run: the population read, cut into fixed
 // pieces, each piece a Wisdom-Holman run of its own over the same planets,
-// the pieces shared among threads (run_test_particles.hpp).
+// the pieces shared among threads and MPI ranks (run_test_particles.hpp).
 #include "run_test_particles.hpp"
 
 #include <algorithm>
 #include <atomic>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <fstream>
 #include <limits>
@@ -21,6 +23,7 @@
 #include <sympl/planetary/wisdom_holman_stepper.hpp>
 
 #include "csv_numbers.hpp"
+#include "ensemble_run.hpp"
 #include "format.hpp"
 #include "run_plan.hpp"
 #include "systems.hpp"
@@ -151,6 +154,56 @@ void run_piece(const planets& p, const std::vector<orbital_elements>& orbits, st
     }
 }
 
+// A row's results as bytes for another rank: its index, then the numbers
+// bit for bit (memcpy), the reason with its length.
+template <class T>
+void put(std::string& out, const T& v) {
+    char bytes[sizeof(T)];
+    std::memcpy(bytes, &v, sizeof(T));
+    out.append(bytes, sizeof(T));
+}
+void put_row(std::string& out, std::size_t index, const test_particle_row& r) {
+    put(out, std::uint64_t(index));
+    put(out, std::uint8_t(r.kept));
+    for (double v : {r.megno, r.a, r.e, r.removed_time}) put(out, v);
+    put(out, std::uint64_t(r.reason.size()));
+    out += r.reason;
+}
+
+// Reads what put_row wrote into rows (their starts are rank 0's own).
+class row_reader {
+public:
+    explicit row_reader(const std::string& text) : text_(text) {}
+    bool done() const { return at_ == text_.size(); }
+    void into(std::vector<test_particle_row>& rows) {
+        const auto index = get<std::uint64_t>();
+        if (index >= rows.size()) broken();
+        test_particle_row& r = rows[std::size_t(index)];
+        r.kept = get<std::uint8_t>() != 0;
+        for (double* v : {&r.megno, &r.a, &r.e, &r.removed_time}) *v = get<double>();
+        const auto length = get<std::uint64_t>();
+        if (length > text_.size() - at_) broken();
+        r.reason = text_.substr(at_, std::size_t(length));
+        at_ += std::size_t(length);
+    }
+
+private:
+    template <class T>
+    T get() {
+        if (text_.size() - at_ < sizeof(T)) broken();
+        T v;
+        std::memcpy(&v, text_.data() + at_, sizeof(T));
+        at_ += sizeof(T);
+        return v;
+    }
+    [[noreturn]] void broken() const {
+        throw sympl::error("run_test_particles: a rank's rows end at byte " + std::to_string(at_) + " of " +
+                           std::to_string(text_.size()) + "; expected whole rows of this run's particles");
+    }
+    const std::string& text_;
+    std::size_t at_ = 0;
+};
+
 }  // namespace
 
 test_particle_span test_particle_span_of(const scene& s) {
@@ -181,6 +234,12 @@ std::vector<orbital_elements> test_particle_orbits(const scene& s) {
 
 std::vector<test_particle_row> run_test_particles(const scene& s, const std::vector<orbital_elements>& orbits,
                                                   int threads, double max_steps, std::size_t piece) {
+    return run_test_particles(s, orbits, threads, max_steps, exchange{}, piece);
+}
+
+std::vector<test_particle_row> run_test_particles(const scene& s, const std::vector<orbital_elements>& orbits,
+                                                  int threads, double max_steps, const exchange& ranks,
+                                                  std::size_t piece) {
     if (piece == 0) throw invalid_argument("run_test_particles: pieces of 0 particles; expected at least 1");
     const problem base = make_problem(s.system, s.parameters, s.q0, s.p0, s.source);
     planets p{base.masses, base.G, phase_space<double>(base.x0.size() / 2), s.methods[0], s.t0,
@@ -203,10 +262,23 @@ std::vector<test_particle_row> run_test_particles(const scene& s, const std::vec
     p.steps = std::size_t(span_steps);
     std::vector<test_particle_row> rows(orbits.size());
     const std::size_t pieces = (orbits.size() + piece - 1) / piece;
-    // Each piece writes its own rows: the same numbers for any thread count.
-    for_each_in_parallel(pieces, threads, [&](std::size_t k) {
+    // Piece k on rank k mod size; each piece writes its own rows: the same
+    // numbers for any thread and rank count.
+    std::vector<std::size_t> mine;
+    for (std::size_t k = std::size_t(ranks.rank); k < pieces; k += std::size_t(ranks.size)) mine.push_back(k);
+    for_each_in_parallel(mine.size(), threads, [&](std::size_t j) {
+        const std::size_t k = mine[j];
         run_piece(p, orbits, k * piece, std::min(orbits.size(), (k + 1) * piece), rows);
     });
+    if (ranks.size == 1) return rows;
+    std::string text;
+    for (std::size_t k : mine)
+        for (std::size_t i = k * piece; i < std::min(orbits.size(), (k + 1) * piece); ++i) put_row(text, i, rows[i]);
+    const std::vector<std::string> all = ranks.gather(text);
+    if (ranks.rank != 0) return {};
+    for (std::size_t i = 0; i < orbits.size(); ++i) rows[i].start = orbits[i];
+    for (std::size_t r = 1; r < all.size(); ++r)
+        for (row_reader in(all[r]); !in.done();) in.into(rows);
     return rows;
 }
 

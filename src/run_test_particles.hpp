@@ -3,8 +3,8 @@
 // planets by the scene's wh(...) method, MEGNO per particle. The particles
 // are cut into pieces of a fixed size, each piece its own stepper over the
 // same planets (whose run the particles do not change, bit for bit), and the
-// pieces shared among threads: every number written is the same for any
-// thread count. Written as test_particles.csv, a map of MEGNO over a and e
+// pieces shared among threads and MPI ranks: every number written is the
+// same for any thread or rank count. Written as test_particles.csv, a map of MEGNO over a and e
 // (PNG, through gnuplot) and summary.md (test_particle_write.cpp).
 #include <cstddef>
 #include <filesystem>
@@ -56,11 +56,18 @@ struct test_particle_row {
 // a file's error names it, the line and what was expected.
 std::vector<orbital_elements> test_particle_orbits(const scene& s);
 
+struct exchange;  // ensemble_run.hpp: the MPI ranks of one run
+
 // Runs the particles (every one, in order) in pieces of `piece`, `threads`
 // pieces at a time (0: OMP_NUM_THREADS, else every core); refuses, with the
 // figures, more than max_steps steps or 1e4 times that in particle-steps.
 std::vector<test_particle_row> run_test_particles(const scene& s, const std::vector<orbital_elements>& orbits,
                                                   int threads, double max_steps,
+                                                  std::size_t piece = test_particle_piece);
+// The same over MPI ranks: piece k runs on rank k mod size, and rank 0 gathers
+// every row (the same numbers as one process); the other ranks get no rows.
+std::vector<test_particle_row> run_test_particles(const scene& s, const std::vector<orbital_elements>& orbits,
+                                                  int threads, double max_steps, const exchange& ranks,
                                                   std::size_t piece = test_particle_piece);
 
 // MEGNO above this counts as chaotic (as for ensembles, ensemble_run.hpp).
@@ -70,5 +77,8 @@ inline constexpr double chaotic_test_particle_megno = 4;
 // in DIR (all of them or none), a few lines on `out`.
 void test_particles_command(const scene& s, const std::filesystem::path& out_dir, int threads, double max_steps,
                             std::ostream& out, std::size_t piece = test_particle_piece);
+// Under mpirun: the pieces shared among the ranks, rank 0 writing everything.
+void test_particles_command(const scene& s, const std::filesystem::path& out_dir, int threads, double max_steps,
+                            const exchange& ranks, std::ostream& out, std::size_t piece = test_particle_piece);
 
 }  // namespace sympl::app

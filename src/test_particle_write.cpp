@@ -6,6 +6,7 @@
 #include <ostream>
 #include <sstream>
 
+#include "ensemble_run.hpp"
 #include "format.hpp"
 #include "output_set.hpp"
 #include "run_test_particles.hpp"
@@ -107,7 +108,8 @@ std::string summary(const scene& s, const std::vector<test_particle_row>& rows, 
     md << "A particle is removed (status `removed`, the reason and time in the CSV) inside a planet's Hill radius "
           "a (m / 3 m_0)^(1/3), where a Kepler orbit about the star is no longer the main motion, or farther than "
        << shortest(test_particle_escape_distance) << " AU from the star.\n\nParticles run in pieces of "
-       << piece << ", each with the same planets: test_particles.csv and the map are the same for any thread count. "
+       << piece << ", each with the same planets: test_particles.csv and the map are the same for any thread and "
+          "MPI rank count. "
        << "Wall time " << fixed(seconds, 2) << " s.\n\nFiles: ";
     for (std::size_t k = 0; k < files.size(); ++k) md << (k ? ", " : "") << files[k];
     md << ", summary.md.\n";
@@ -118,11 +120,20 @@ std::string summary(const scene& s, const std::vector<test_particle_row>& rows, 
 
 void test_particles_command(const scene& s, const fs::path& out_dir, int threads, double max_steps, std::ostream& out,
                             std::size_t piece) {
+    test_particles_command(s, out_dir, threads, max_steps, exchange{}, out, piece);
+}
+
+void test_particles_command(const scene& s, const fs::path& out_dir, int threads, double max_steps,
+                            const exchange& ranks, std::ostream& out, std::size_t piece) {
     const std::vector<orbital_elements> orbits = test_particle_orbits(s);
+    if (ranks.rank != 0) {  // runs its pieces and hands them to rank 0, which writes
+        run_test_particles(s, orbits, threads, max_steps, ranks, piece);
+        return;
+    }
     output_set outputs(out_dir);
     const fs::path dir = outputs.staging();
     const double start = clock_seconds();
-    const std::vector<test_particle_row> rows = run_test_particles(s, orbits, threads, max_steps, piece);
+    const std::vector<test_particle_row> rows = run_test_particles(s, orbits, threads, max_steps, ranks, piece);
     const double seconds = clock_seconds() - start;
     write_csv(rows, dir / "test_particles.csv");
     std::vector<std::string> files{"test_particles.csv"};

@@ -9,6 +9,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -16,6 +17,7 @@
 
 #include "scene.hpp"
 #include "scratch_directory.hpp"
+#include "ensemble_run.hpp"
 #include "run_test_particles.hpp"
 #include "format.hpp"
 #include "run_plan.hpp"
@@ -171,6 +173,52 @@ TEST_CASE("test particles belt: MEGNO about 2 far inside Jupiter, above 4 near i
     CHECK(worst_regular < 0.15);
     CHECK(most_chaotic > 4);
     fs::remove_all(dir);
+}
+
+TEST_CASE("test particles belt: pieces shared among 3 ranks give rank 0 the rows of one process, bit for bit") {
+    const scene s = parse_scene(replaced(belt, "t_end = 160000", "t_end = 40000"), "belt.toml");
+    const std::vector<sympl::orbital_elements> orbits = test_particle_orbits(s);
+    // Pieces of 16: 5 pieces, ranks 0 and 1 two each, rank 2 one.
+    const std::vector<test_particle_row> alone = run_test_particles(s, orbits, 1, default_max_steps, 16);
+    auto same_bits = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+    std::vector<std::string> texts(3);
+    std::size_t removed = 0;
+    for (int rank : {1, 2, 0}) {  // the others first: rank 0's gather returns what they sent
+        exchange ranks;
+        ranks.rank = rank;
+        ranks.size = 3;
+        ranks.gather = [&texts, rank](const std::string& mine) {
+            texts[std::size_t(rank)] = mine;
+            return rank == 0 ? texts : std::vector<std::string>{};
+        };
+        const std::vector<test_particle_row> rows = run_test_particles(s, orbits, 1, default_max_steps, ranks, 16);
+        if (rank != 0) {
+            CHECK(rows.empty());
+            CHECK_FALSE(texts[std::size_t(rank)].empty());
+            continue;
+        }
+        REQUIRE(rows.size() == alone.size());
+        for (std::size_t i = 0; i < rows.size(); ++i) {
+            INFO("particle " << i);
+            CHECK(rows[i].kept == alone[i].kept);
+            CHECK(rows[i].reason == alone[i].reason);
+            CHECK(same_bits(rows[i].start.a, alone[i].start.a));
+            CHECK(same_bits(rows[i].start.e, alone[i].start.e));
+            for (auto field : {&test_particle_row::megno, &test_particle_row::a, &test_particle_row::e,
+                               &test_particle_row::removed_time})
+                CHECK(same_bits(rows[i].*field, alone[i].*field));
+            removed += rows[i].kept ? 0 : 1;
+        }
+    }
+    CHECK(removed > 0);  // reasons and times crossed between ranks too
+    // Bytes that are not whole rows: an error that says where, never rows made up.
+    exchange broken;
+    broken.size = 2;
+    broken.gather = [](const std::string& mine) { return std::vector<std::string>{mine, "abc"}; };
+    CHECK_THROWS_WITH_AS(run_test_particles(s, orbits, 1, default_max_steps, broken, 16),
+                         "run_test_particles: a rank's rows end at byte 0 of 3; expected whole rows of this run's "
+                         "particles",
+                         sympl::error);
 }
 
 TEST_CASE("test particles belt: planets that blow up stop the run with the figures, nothing written") {
