@@ -81,7 +81,9 @@ void add_runs(CLI::App& app, command_line& c) {
         ->check(CLI::Range(1, 1024));
     c.run->add_flag("--json", c.json, "JSON output");
     add_max_steps(c.run, c.max_steps);
-    c.run->add_flag("--resume", c.resume, "continue from the scene's checkpoints (checkpoint = {every_steps, file})");
+    c.run->add_flag("--resume", c.resume,
+                    "continue from the scene's checkpoints (checkpoint = {every_steps, file}); a [test_particles] map "
+                    "at any rank and thread count");
 
     c.report = app.add_subcommand("report", "Work-precision study over scenes (default: the built-in set)");
     c.report->add_option("scenes", c.report_files, "scene files (TOML); none: the built-in set");
@@ -117,10 +119,9 @@ void run_one(const command_line& c, const exchange& ranks) {
                                " has none (its outputs go to output.directory)");
         return run_scene(s, c.json, std::cout, c.max_steps, c.resume);
     }
-    if (c.json || c.resume)
-        throw sympl::error(s.source + " has [test_particles]: its run writes files in --out; expected neither --json "
-                                      "nor --resume");
-    test_particles_command(s, c.run_out, c.threads, c.max_steps, ranks, std::cout);
+    if (c.json)
+        throw sympl::error(s.source + " has [test_particles]: its run writes files in --out; expected no --json");
+    test_particles_command(s, c.run_out, c.threads, c.max_steps, ranks, c.resume, std::cout);
 }
 
 // The chosen command; its exit code.

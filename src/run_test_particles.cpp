@@ -13,8 +13,10 @@
 #include <exception>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <mutex>
 #include <numbers>
+#include <sstream>
 #include <thread>
 #include <tuple>
 
@@ -25,6 +27,7 @@
 #include "csv_numbers.hpp"
 #include "ensemble_run.hpp"
 #include "format.hpp"
+#include "row_checkpoint.hpp"
 #include "run_plan.hpp"
 #include "systems.hpp"
 
@@ -204,7 +207,64 @@ private:
     std::size_t at_ = 0;
 };
 
+// A map's checkpoints (row_checkpoint.hpp): a row per particle, its index,
+// kept, MEGNO, final a and e, removal time and reason; the starts are the
+// scene's.
+constexpr const char* checkpoint_head = "sympl-test-particles-checkpoint 1\n";
+const std::string checkpoint_kind = "test-particles";
+using saved_rows = std::map<std::size_t, test_particle_row>;
+
+void put_saved(std::string& out, std::size_t index, const test_particle_row& r) {
+    out += "row " + std::to_string(index) + (r.kept ? " 1 " : " 0 ") + hex_text(r.megno) + ' ' + hex_text(r.a) + ' ' +
+           hex_text(r.e) + ' ' + hex_text(r.removed_time) + ' ' + std::to_string(r.reason.size()) + ' ' + r.reason +
+           '\n';
+}
+
+saved_rows read_saved(const scene& s, std::size_t particles) {
+    saved_rows rows;
+    for (const auto& [file, text] :
+         read_row_checkpoints(s.checkpoint.file, checkpoint_kind, checkpoint_head, s.text_hash)) {
+        std::istringstream in(text);
+        std::string word;
+        while (in >> word) {
+            if (word != "row") refuse_row_checkpoint(checkpoint_kind, file, "expected 'row', found '" + word + "'");
+            const std::size_t index = read_count(in, checkpoint_kind, file, particles - 1);
+            test_particle_row r;
+            r.kept = read_count(in, checkpoint_kind, file, 1) == 1;
+            for (double* v : {&r.megno, &r.a, &r.e, &r.removed_time}) *v = read_number(in, checkpoint_kind, file);
+            r.reason = read_text(in, checkpoint_kind, file);
+            rows[index] = std::move(r);
+        }
+    }
+    return rows;
+}
+
+// This rank's file, rewritten once `every` particle-steps have finished
+// since the last time: the rows of every whole piece it holds.
+struct piece_saves {
+    bool on = false;
+    std::filesystem::path mine;
+    std::string scene_hash;
+    double every = 0, since = 0;
+    saved_rows rows;
+    std::mutex lock;
+
+    void finished(const std::vector<test_particle_row>& all, std::size_t first, std::size_t last, double steps) {
+        if (!on) return;
+        const std::lock_guard<std::mutex> hold(lock);
+        for (std::size_t i = first; i < last; ++i) rows[i] = all[i];
+        since += double(last - first) * steps;
+        if (since < every) return;
+        since = 0;
+        std::string text;
+        for (const auto& [index, row] : rows) put_saved(text, index, row);
+        write_row_checkpoint(mine, checkpoint_head, scene_hash, text);
+    }
+};
+
 }  // namespace
+
+void remove_test_particle_checkpoints(const scene& s) { remove_row_checkpoints(s.checkpoint.file, checkpoint_kind); }
 
 test_particle_span test_particle_span_of(const scene& s) {
     const double dt = sweep_of(s, s.methods[0])[0];
@@ -234,12 +294,14 @@ std::vector<orbital_elements> test_particle_orbits(const scene& s) {
 
 std::vector<test_particle_row> run_test_particles(const scene& s, const std::vector<orbital_elements>& orbits,
                                                   int threads, double max_steps, std::size_t piece) {
-    return run_test_particles(s, orbits, threads, max_steps, exchange{}, piece);
+    return run_test_particles(s, orbits, threads, max_steps, exchange{}, false, piece);
 }
 
 std::vector<test_particle_row> run_test_particles(const scene& s, const std::vector<orbital_elements>& orbits,
-                                                  int threads, double max_steps, const exchange& ranks,
+                                                  int threads, double max_steps, const exchange& ranks, bool resume,
                                                   std::size_t piece) {
+    if (resume && !s.checkpoint.every_steps)
+        throw scene_error(s.source + ": --resume, but the scene has no checkpoint = {every_steps = N, file = \"...\"}");
     if (piece == 0) throw invalid_argument("run_test_particles: pieces of 0 particles; expected at least 1");
     const problem base = make_problem(s.system, s.parameters, s.q0, s.p0, s.source);
     planets p{base.masses, base.G, phase_space<double>(base.x0.size() / 2), s.methods[0], s.t0,
@@ -263,12 +325,32 @@ std::vector<test_particle_row> run_test_particles(const scene& s, const std::vec
     std::vector<test_particle_row> rows(orbits.size());
     const std::size_t pieces = (orbits.size() + piece - 1) / piece;
     // Piece k on rank k mod size; each piece writes its own rows: the same
-    // numbers for any thread and rank count.
-    std::vector<std::size_t> mine;
+    // numbers for any thread and rank count. A piece a checkpoint holds whole
+    // is taken from it (its rows are those numbers, to the bit).
+    piece_saves saves;
+    if (s.checkpoint.every_steps) {
+        saves.on = true;
+        saves.mine = row_checkpoint_file(s.checkpoint.file, checkpoint_kind, ranks.rank);
+        saves.scene_hash = s.text_hash;
+        saves.every = double(s.checkpoint.every_steps);
+    }
+    const saved_rows saved = resume ? read_saved(s, orbits.size()) : saved_rows{};
+    std::vector<std::size_t> mine, pending;
     for (std::size_t k = std::size_t(ranks.rank); k < pieces; k += std::size_t(ranks.size)) mine.push_back(k);
-    for_each_in_parallel(mine.size(), threads, [&](std::size_t j) {
-        const std::size_t k = mine[j];
-        run_piece(p, orbits, k * piece, std::min(orbits.size(), (k + 1) * piece), rows);
+    for (std::size_t k : mine) {
+        const std::size_t first = k * piece, last = std::min(orbits.size(), (k + 1) * piece);
+        bool whole = true;
+        for (std::size_t i = first; i < last && whole; ++i) whole = saved.count(i) == 1;
+        if (!whole) {
+            pending.push_back(k);
+            continue;
+        }
+        for (std::size_t i = first; i < last; ++i) rows[i] = saved.at(i), rows[i].start = orbits[i], saves.rows[i] = rows[i];
+    }
+    for_each_in_parallel(pending.size(), threads, [&](std::size_t j) {
+        const std::size_t k = pending[j], first = k * piece, last = std::min(orbits.size(), (k + 1) * piece);
+        run_piece(p, orbits, first, last, rows);
+        saves.finished(rows, first, last, double(p.steps));
     });
     if (ranks.size == 1) return rows;
     std::string text;

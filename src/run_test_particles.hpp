@@ -66,19 +66,30 @@ std::vector<test_particle_row> run_test_particles(const scene& s, const std::vec
                                                   std::size_t piece = test_particle_piece);
 // The same over MPI ranks: piece k runs on rank k mod size, and rank 0 gathers
 // every row (the same numbers as one process); the other ranks get no rows.
+// With the scene's checkpoint = {every_steps = N, file = "..."}, each rank
+// saves the rows of its finished pieces to FILE.test-particles-rank-R
+// (row_checkpoint.hpp) once N particle-steps have finished since its last
+// save; `resume` runs only the pieces no rank's file holds whole, at any
+// rank and thread count, to the same bits.
 std::vector<test_particle_row> run_test_particles(const scene& s, const std::vector<orbital_elements>& orbits,
-                                                  int threads, double max_steps, const exchange& ranks,
+                                                  int threads, double max_steps, const exchange& ranks, bool resume,
                                                   std::size_t piece = test_particle_piece);
 
 // MEGNO above this counts as chaotic (as for ensembles, ensemble_run.hpp).
 inline constexpr double chaotic_test_particle_megno = 4;
 
+// Every FILE.test-particles-rank-* of the scene's checkpoint.
+void remove_test_particle_checkpoints(const scene& s);
+
 // `sympl run SCENE --out DIR` for a scene with [test_particles]: the files
 // in DIR (all of them or none), a few lines on `out`.
 void test_particles_command(const scene& s, const std::filesystem::path& out_dir, int threads, double max_steps,
                             std::ostream& out, std::size_t piece = test_particle_piece);
-// Under mpirun: the pieces shared among the ranks, rank 0 writing everything.
+// Under mpirun: the pieces shared among the ranks, rank 0 writing everything;
+// `resume`: from the scene's checkpoints (run_test_particles), which rank 0
+// removes once the files are written.
 void test_particles_command(const scene& s, const std::filesystem::path& out_dir, int threads, double max_steps,
-                            const exchange& ranks, std::ostream& out, std::size_t piece = test_particle_piece);
+                            const exchange& ranks, bool resume, std::ostream& out,
+                            std::size_t piece = test_particle_piece);
 
 }  // namespace sympl::app

@@ -62,8 +62,6 @@ void check_planetary_run(const reader& r, const toml::node& node, const scene& s
                         "'");
     if (sweep_of(s, s.methods[0]).size() != 1)
         r.fail(node, "[test_particles] runs one step size; expected dt = <number>, not a sweep");
-    if (s.checkpoint.every_steps)
-        r.fail(node, "[test_particles] with 'checkpoint': a map is not resumed; expected one of them");
     if (s.ensemble) r.fail(node, "[test_particles] with [ensemble]; expected one of them");
 }
 

@@ -120,20 +120,21 @@ std::string summary(const scene& s, const std::vector<test_particle_row>& rows, 
 
 void test_particles_command(const scene& s, const fs::path& out_dir, int threads, double max_steps, std::ostream& out,
                             std::size_t piece) {
-    test_particles_command(s, out_dir, threads, max_steps, exchange{}, out, piece);
+    test_particles_command(s, out_dir, threads, max_steps, exchange{}, false, out, piece);
 }
 
 void test_particles_command(const scene& s, const fs::path& out_dir, int threads, double max_steps,
-                            const exchange& ranks, std::ostream& out, std::size_t piece) {
+                            const exchange& ranks, bool resume, std::ostream& out, std::size_t piece) {
     const std::vector<orbital_elements> orbits = test_particle_orbits(s);
     if (ranks.rank != 0) {  // runs its pieces and hands them to rank 0, which writes
-        run_test_particles(s, orbits, threads, max_steps, ranks, piece);
+        run_test_particles(s, orbits, threads, max_steps, ranks, resume, piece);
         return;
     }
     output_set outputs(out_dir);
     const fs::path dir = outputs.staging();
     const double start = clock_seconds();
-    const std::vector<test_particle_row> rows = run_test_particles(s, orbits, threads, max_steps, ranks, piece);
+    const std::vector<test_particle_row> rows =
+        run_test_particles(s, orbits, threads, max_steps, ranks, resume, piece);
     const double seconds = clock_seconds() - start;
     write_csv(rows, dir / "test_particles.csv");
     std::vector<std::string> files{"test_particles.csv"};
@@ -147,6 +148,7 @@ void test_particles_command(const scene& s, const fs::path& out_dir, int threads
     md.stream() << summary(s, rows, c, seconds, piece, files);
     md.commit();
     outputs.commit();
+    if (s.checkpoint.every_steps) remove_test_particle_checkpoints(s);  // complete: nothing to resume
     out << s.name << ": " << rows.size() << " test particles: " << c.kept << " kept, " << c.removed << " removed";
     if (s.test_particles->megno) out << ", " << c.chaotic << " chaotic (MEGNO > 4)";
     out << " (" << fixed(seconds, 2) << " s)\nwrote " << (outputs.directory() / "test_particles.csv").string();

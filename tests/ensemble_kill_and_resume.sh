@@ -6,6 +6,7 @@
 # ensemble is complete.
 # Usage: ensemble_kill_and_resume.sh PROGRAM WORKDIR [MPI ON|OFF]
 set -u
+source "$(cd "$(dirname "$0")" && pwd)/kill_and_resume_helpers.sh"
 sympl=$1 work=$2 mpi=${3:-OFF}
 rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
 fail() { echo "FAIL: $*"; exit 1; }
@@ -23,19 +24,10 @@ indicator = "megno"
 TOML
 "$sympl" ensemble orbits.toml --out whole --threads 2 > /dev/null || fail "the uninterrupted run failed"
 [ -z "$(ls -A state)" ] || fail "a complete ensemble left checkpoints: $(ls state)"
-# Until some rank has saved rows (0), or the process $1 has ended (1).
-wait_for_checkpoint() {
-    while kill -0 "$1" 2> /dev/null; do
-        compgen -G "state/orbits.ensemble-rank-[0-9]*" > /dev/null && return 0
-        sleep 0.002
-    done
-    return 1
-}
 "$sympl" ensemble orbits.toml --out threads --threads 2 > /dev/null 2>&1 &
 pid=$!
-wait_for_checkpoint $pid || fail "threads: the run ended before it saved a checkpoint"
-kill -s KILL $pid
-wait $pid 2> /dev/null
+wait_for_file $pid "state/orbits.ensemble-rank-[0-9]*" || fail "threads: the run ended before it saved a checkpoint"
+kill_now $pid
 saved=$(ls state | wc -l)
 [ "$saved" -gt 0 ] || fail "threads: killed too late, no checkpoint left to resume from"
 "$sympl" ensemble orbits.toml --out threads --threads 1 --resume > /dev/null || fail "threads: the resumed run failed"
@@ -43,18 +35,13 @@ cmp whole/ensemble.csv threads/ensemble.csv || fail "threads: ensemble.csv diffe
 [ -z "$(ls -A state)" ] || fail "threads: checkpoints left: $(ls state)"
 echo "killed at 2 threads after $saved checkpoint file(s), resumed at 1: ensemble.csv byte-identical"
 if [ "$mpi" = ON ]; then
-    root=()
-    [ "$(id -u)" -eq 0 ] && root=(--allow-run-as-root)
-    mpirun "${root[@]}" --oversubscribe -np 3 "$sympl" ensemble orbits.toml --out ranks --threads 1 > /dev/null 2>&1 &
+    mpirun "${mpi_options[@]}" -np 3 "$sympl" ensemble orbits.toml --out ranks --threads 1 > /dev/null 2>&1 &
     job=$!
-    wait_for_checkpoint $job || fail "ranks: the job ended before it saved a checkpoint"
-    rank=$(pgrep -P $job | head -n 1)
-    [ -n "$rank" ] || fail "ranks: no rank process under mpirun $job"
-    kill -s KILL "$rank"  # one rank lost: Open MPI ends the job
-    wait $job 2> /dev/null
+    wait_for_file $job "state/orbits.ensemble-rank-[0-9]*" || fail "ranks: the job ended before it saved a checkpoint"
+    kill_one_rank $job || fail "ranks: no rank process under mpirun $job"
     saved=$(ls state | wc -l)
     [ "$saved" -gt 0 ] || fail "ranks: killed too late, no checkpoint left to resume from"
-    mpirun "${root[@]}" --oversubscribe -np 2 "$sympl" ensemble orbits.toml --out ranks --threads 1 --resume > /dev/null ||
+    mpirun "${mpi_options[@]}" -np 2 "$sympl" ensemble orbits.toml --out ranks --threads 1 --resume > /dev/null ||
         fail "ranks: the resumed job failed"
     cmp whole/ensemble.csv ranks/ensemble.csv || fail "ranks: ensemble.csv differs after the resume"
     [ -z "$(ls -A state)" ] || fail "ranks: checkpoints left: $(ls state)"

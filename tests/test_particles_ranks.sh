@@ -4,6 +4,7 @@
 # of 256, so that every rank runs one); a scene without [test_particles]
 # under mpirun is refused with the reason.
 set -euo pipefail
+source "$(cd "$(dirname "$0")" && pwd)/kill_and_resume_helpers.sh"  # mpi_options
 sympl=$1 work=$2 mpi=${3:-OFF}
 rm -rf "$work" && mkdir -p "$work" && cd "$work"
 cat > belt.toml <<'TOML'
@@ -23,10 +24,8 @@ rows=$(($(wc -l < t1/test_particles.csv) - 1))
 [ "$rows" -eq 600 ] || { echo "expected 600 rows, got $rows"; exit 1; }
 grep -q ',removed,' t1/test_particles.csv || { echo "no particle removed: the test would not see reasons cross ranks"; exit 1; }
 if [ "$mpi" = ON ]; then
-    root=()
-    [ "$(id -u)" -eq 0 ] && root=(--allow-run-as-root)
     for k in 1 3; do
-        mpirun "${root[@]}" --oversubscribe -np $k "$sympl" run belt.toml --out r$k --threads 1 > /dev/null
+        mpirun "${mpi_options[@]}" -np $k "$sympl" run belt.toml --out r$k --threads 1 > /dev/null
         cmp t1/test_particles.csv r$k/test_particles.csv
     done
     cat > plain.toml <<'TOML'
@@ -37,7 +36,7 @@ dt = 0.1
 t_end = 1
 TOML
     set +e
-    mpirun "${root[@]}" --oversubscribe -np 2 "$sympl" run plain.toml > out.txt 2> err.txt
+    mpirun "${mpi_options[@]}" -np 2 "$sympl" run plain.toml > out.txt 2> err.txt
     code=$?
     set -e
     [ $code -ne 0 ] || { echo "a plain scene under mpirun was not refused"; exit 1; }

@@ -18,6 +18,7 @@
 #include "scene.hpp"
 #include "scratch_directory.hpp"
 #include "ensemble_run.hpp"
+#include "row_checkpoint.hpp"
 #include "run_test_particles.hpp"
 #include "format.hpp"
 #include "run_plan.hpp"
@@ -191,7 +192,8 @@ TEST_CASE("test particles belt: pieces shared among 3 ranks give rank 0 the rows
             texts[std::size_t(rank)] = mine;
             return rank == 0 ? texts : std::vector<std::string>{};
         };
-        const std::vector<test_particle_row> rows = run_test_particles(s, orbits, 1, default_max_steps, ranks, 16);
+        const std::vector<test_particle_row> rows =
+            run_test_particles(s, orbits, 1, default_max_steps, ranks, false, 16);
         if (rank != 0) {
             CHECK(rows.empty());
             CHECK_FALSE(texts[std::size_t(rank)].empty());
@@ -215,10 +217,74 @@ TEST_CASE("test particles belt: pieces shared among 3 ranks give rank 0 the rows
     exchange broken;
     broken.size = 2;
     broken.gather = [](const std::string& mine) { return std::vector<std::string>{mine, "abc"}; };
-    CHECK_THROWS_WITH_AS(run_test_particles(s, orbits, 1, default_max_steps, broken, 16),
+    CHECK_THROWS_WITH_AS(run_test_particles(s, orbits, 1, default_max_steps, broken, false, 16),
                          "run_test_particles: a rank's rows end at byte 0 of 3; expected whole rows of this run's "
                          "particles",
                          sympl::error);
+}
+
+TEST_CASE("test particles belt: a checkpointed map resumes the pieces no file holds, to the bits of a whole run") {
+    const fs::path dir = scratch_directory("sympl_test_belt_checkpoint");
+    const std::string file = (dir / "state" / "belt").string();
+    fs::create_directories(dir / "state");
+    const std::string text = replaced(belt, "t_end = 160000", "t_end = 40000") + "";
+    const scene s = parse_scene(replaced(text, "dt = 20\n", "dt = 20\ncheckpoint = {every_steps = 1, file = \"" + file +
+                                                                   "\"}\n"),
+                                "belt.toml");
+    const std::vector<sympl::orbital_elements> orbits = test_particle_orbits(s);
+    const std::vector<test_particle_row> whole = run_test_particles(s, orbits, 1, default_max_steps, 16);
+    auto same_bits = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+    auto same = [](const std::vector<test_particle_row>& a, const std::vector<test_particle_row>& b) {
+        bool all = a.size() == b.size();
+        for (std::size_t i = 0; all && i < a.size(); ++i)
+            all = a[i].kept == b[i].kept && a[i].reason == b[i].reason &&
+                  std::memcmp(&a[i].megno, &b[i].megno, sizeof(double)) == 0 &&
+                  std::memcmp(&a[i].a, &b[i].a, sizeof(double)) == 0 &&
+                  std::memcmp(&a[i].e, &b[i].e, sizeof(double)) == 0 &&
+                  std::memcmp(&a[i].removed_time, &b[i].removed_time, sizeof(double)) == 0 &&
+                  std::memcmp(&a[i].start.a, &b[i].start.a, sizeof(double)) == 0;
+        return all;
+    };
+    remove_test_particle_checkpoints(s);
+    // Rank 1 of 2 runs pieces 1 and 3 and saves them; a resume in one process runs 0, 2 and 4 only.
+    exchange half;
+    half.rank = 1;
+    half.size = 2;
+    half.gather = [](const std::string&) { return std::vector<std::string>{}; };
+    run_test_particles(s, orbits, 1, default_max_steps, half, false, 16);
+    REQUIRE(fs::exists(dir / "state" / "belt.test-particles-rank-1"));
+    CHECK(same(run_test_particles(s, orbits, 1, default_max_steps, exchange{}, true, 16), whole));
+    // What a file holds is taken, not run again: piece 1 (particles 16-31) saved
+    // whole with MEGNO 42 comes back so; piece 2 with one row missing runs anew.
+    remove_test_particle_checkpoints(s);
+    std::string rows;
+    for (std::size_t i = 16; i < 47; ++i) rows += "row " + std::to_string(i) + " 1 0x1.5p+5 0x1p+0 0x0p+0 0x0p+0 0 \n";
+    write_row_checkpoint(row_checkpoint_file(file, "test-particles", 5), "sympl-test-particles-checkpoint 1\n",
+                         s.text_hash, rows);
+    const std::vector<test_particle_row> taken = run_test_particles(s, orbits, 1, default_max_steps, exchange{}, true, 16);
+    CHECK(taken[16].megno == 42);
+    CHECK(taken[31].megno == 42);
+    CHECK(same_bits(taken[32].megno, whole[32].megno));
+    CHECK(same_bits(taken[15].megno, whole[15].megno));
+    remove_test_particle_checkpoints(s);
+    run_test_particles(s, orbits, 1, default_max_steps, half, false, 16);
+    // A resume of a file that is not whole is refused with the reason, never read in part.
+    {
+        std::ofstream cut(dir / "state" / "belt.test-particles-rank-1", std::ios::app | std::ios::binary);
+        cut << "row";
+    }
+    CHECK_THROWS_WITH_AS(run_test_particles(s, orbits, 1, default_max_steps, exchange{}, true, 16),
+                         doctest::Contains("belt.test-particles-rank-1: is corrupted (checksum mismatch); not resumed "
+                                           "from (remove it to start over)"),
+                         sympl::error);
+    remove_test_particle_checkpoints(s);
+    CHECK_FALSE(fs::exists(dir / "state" / "belt.test-particles-rank-1"));
+    // --resume without a checkpoint in the scene says so.
+    CHECK_THROWS_WITH_AS(run_test_particles(parse_scene(text, "belt.toml"), orbits, 1, default_max_steps, exchange{},
+                                            true, 16),
+                         "belt.toml: --resume, but the scene has no checkpoint = {every_steps = N, file = \"...\"}",
+                         sympl::error);
+    fs::remove_all(dir);
 }
 
 TEST_CASE("test particles belt: planets that blow up stop the run with the figures, nothing written") {
