@@ -240,7 +240,8 @@ saved_rows read_saved(const scene& s, std::size_t particles) {
 }
 
 // This rank's file, rewritten once `every` particle-steps have finished
-// since the last time: the rows of every whole piece it holds.
+// since the last time: the rows of its finished pieces and of every piece
+// the checkpoints resumed from held.
 struct piece_saves {
     bool on = false;
     std::filesystem::path mine;
@@ -335,6 +336,7 @@ std::vector<test_particle_row> run_test_particles(const scene& s, const std::vec
         saves.every = double(s.checkpoint.every_steps);
     }
     const saved_rows saved = resume ? read_saved(s, orbits.size()) : saved_rows{};
+    saves.rows = saved;  // kept in this rank's file too: a second kill at another rank count loses none of them
     std::vector<std::size_t> mine, pending;
     for (std::size_t k = std::size_t(ranks.rank); k < pieces; k += std::size_t(ranks.size)) mine.push_back(k);
     for (std::size_t k : mine) {
@@ -345,7 +347,7 @@ std::vector<test_particle_row> run_test_particles(const scene& s, const std::vec
             pending.push_back(k);
             continue;
         }
-        for (std::size_t i = first; i < last; ++i) rows[i] = saved.at(i), rows[i].start = orbits[i], saves.rows[i] = rows[i];
+        for (std::size_t i = first; i < last; ++i) rows[i] = saved.at(i), rows[i].start = orbits[i];
     }
     for_each_in_parallel(pending.size(), threads, [&](std::size_t j) {
         const std::size_t k = pending[j], first = k * piece, last = std::min(orbits.size(), (k + 1) * piece);
