@@ -4,6 +4,7 @@
 # a scene error exits 2 and writes nothing.
 set -euo pipefail
 sympl=$1 work=$2 mpi=${3:-OFF}
+source "$(cd "$(dirname "$0")" && pwd)/mpi_options.sh"
 rm -rf "$work" && mkdir -p "$work" && cd "$work"
 cat > chaos.toml <<'TOML'
 name = "small-chaos"
@@ -24,10 +25,8 @@ rows=$(($(wc -l < t1/ensemble.csv) - 1))
 grep -q '^0,-0.4,-0.4,invalid,.*below the potential' t1/ensemble.csv || { echo "no invalid row for (q2, p2) = (-0.4, -0.4)"; exit 1; }
 grep -q ',stable,' t1/ensemble.csv
 if [ "$mpi" = ON ]; then
-    root=()
-    [ "$(id -u)" -eq 0 ] && root=(--allow-run-as-root)
     for k in 1 3; do
-        mpirun "${root[@]}" --oversubscribe -np $k "$sympl" ensemble chaos.toml --out r$k --threads 1 > /dev/null
+        mpirun "${mpi_options[@]}" -np $k "$sympl" ensemble chaos.toml --out r$k --threads 1 > /dev/null
         cmp t1/ensemble.csv r$k/ensemble.csv
     done
     echo "ranks 1 and 3 byte-identical"

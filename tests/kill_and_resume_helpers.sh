@@ -27,6 +27,5 @@ kill_one_rank() {
     return 0
 }
 
-# mpirun's options here (as root Open MPI needs --allow-run-as-root), in the array mpi_options.
-mpi_options=(--oversubscribe)
-[ "$(id -u)" -eq 0 ] && mpi_options+=(--allow-run-as-root)
+# mpirun's options, in the array mpi_options.
+source "$(dirname "${BASH_SOURCE[0]}")/mpi_options.sh"

@@ -4,6 +4,7 @@
 # (work_precision.csv's seconds columns, and what is read off them).
 set -euo pipefail
 sympl=$1 work=$2
+source "$(cd "$(dirname "$0")" && pwd)/mpi_options.sh"
 rm -rf "$work" && mkdir -p "$work" && cd "$work"
 cat > hh.toml <<'TOML'
 name = "small-hh"
@@ -13,10 +14,8 @@ methods = ["leapfrog_kdk", "blanes_moan_s6", "rk4", "odeint_rk4"]
 dt = {from = 0.2, to = 0.02, count = 4}
 t_end = 20
 TOML
-root=()
-[ "$(id -u)" -eq 0 ] && root=(--allow-run-as-root)
 "$sympl" report hh.toml --no-plots --out one > /dev/null
-mpirun "${root[@]}" --oversubscribe -np 3 "$sympl" report hh.toml --no-plots --out three > three.txt
+mpirun "${mpi_options[@]}" -np 3 "$sympl" report hh.toml --no-plots --out three > three.txt
 # Columns 11-13 are the wall times.
 for d in one three; do cut -d, -f1-10,14- "$d/work_precision.csv" > "$d.csv"; done
 rows=$(($(wc -l < one.csv) - 1))
@@ -28,7 +27,7 @@ grep -q "small-hh" three.txt
 [ "$(grep -c '^small-hh ' three.txt)" -eq 10 ] || { cat three.txt; exit 1; }
 # Rank 0 cannot write: every rank ends with exit 2 (none is left waiting for it).
 set +e
-timeout 120 mpirun "${root[@]}" --oversubscribe -np 3 "$sympl" report hh.toml --no-plots --out /proc/no-such 2> err.txt
+timeout 120 mpirun "${mpi_options[@]}" -np 3 "$sympl" report hh.toml --no-plots --out /proc/no-such 2> err.txt
 code=$?
 set -e
 [ $code -eq 2 ] || { echo "exit $code when rank 0 cannot write"; cat err.txt; exit 1; }

@@ -4,7 +4,7 @@
 # of 256, so that every rank runs one); a scene without [test_particles]
 # under mpirun is refused with the reason.
 set -euo pipefail
-source "$(cd "$(dirname "$0")" && pwd)/kill_and_resume_helpers.sh"  # mpi_options
+source "$(cd "$(dirname "$0")" && pwd)/mpi_options.sh"
 sympl=$1 work=$2 mpi=${3:-OFF}
 rm -rf "$work" && mkdir -p "$work" && cd "$work"
 cat > belt.toml <<'TOML'
