@@ -11,7 +11,9 @@
 //       every particle is either still there or in the log;
 //   (c) with a corrector and per-particle MEGNO, a removed particle's MEGNO
 //       goes with it and the log's time runs from the time given;
-//   (d) bad options are refused, naming the value.
+//   (d) a stepper restored from carried() half way logs what the whole run
+//       logs, bit for bit; a log is not restored into a stepper tracking none;
+//   (e) bad options are refused, naming the value.
 #include <doctest/doctest.h>
 
 #include <array>
@@ -225,6 +227,83 @@ TEST_CASE("encounters: with a corrector and MEGNO, a removed particle's MEGNO go
     // Circular Kepler orbits: <Y> -> 2 (their tangents grow linearly).
     CHECK(std::fabs(megno[0] - 2) < 0.3);
     CHECK(std::fabs(megno[1] - 2) < 0.3);
+}
+
+TEST_CASE("encounters: a stepper restored from carried() half way logs what the whole run logs") {
+    for (wh_coordinates coordinates : {wh_coordinates::democratic_heliocentric, wh_coordinates::jacobi}) {
+        const std::string name = coordinates_name(coordinates);
+        CAPTURE(name);
+        wisdom_holman_options o;
+        o.coordinates = coordinates;
+        encounter_options e;
+        e.radius = {0.01, 2e-3};
+        e.escape_distance = 2.5;
+        e.unbound_distance = 2.0;
+        e.log_within_hill = 1e3;  // 6.9e-3: the flybys below are logged
+        const auto tracked = [&] {
+            wisdom_holman_stepper<State> wh({1.0, planet_mass}, 1.0, method("leapfrog_kdk"), o);
+            wh.track_encounters(e);
+            return wh;
+        };
+        test_particle_set<double> s = one(flyby(0.8, 1e-3, 1.25, 0.4));  // hits at t ~ 0.8
+        for (const auto& rv : {flyby(0.3, 4e-3, 1.1, 0.2), flyby(1.5, 3e-3, 0.9, -0.3),
+                               std::pair<V3, V3>{V3(0, -1.5, 0), V3(0.3, -1.4, 0)}})  // two flybys, one unbound
+            s.add({rv.first[0], rv.first[1], rv.first[2]}, {rv.second[0], rv.second[1], rv.second[2]});
+        auto whole = tracked();
+        whole.set_test_particles(s);
+        State x_whole = system_start();
+        whole.steps(x_whole, 0.01, 200);
+
+        auto first = tracked();
+        first.set_test_particles(s);
+        State x = system_start();
+        first.steps(x, 0.01, 60);  // past one flyby and the unbound particle's loss, before the rest
+        REQUIRE(first.encounters().losses().size() + first.encounters().encounters().size() >= 1);
+        auto resumed = tracked();
+        resumed.restore_carried(first.carried());
+        resumed.steps(x, 0.01, 140);
+
+        const auto& a = whole.encounters();
+        const auto& b = resumed.encounters();
+        MESSAGE(name << ": " << a.encounters().size() << " encounters and " << a.losses().size()
+                     << " losses over the run, " << first.encounters().encounters().size() << " and "
+                     << first.encounters().losses().size() << " before the checkpoint");
+        REQUIRE(a.encounters().size() >= 2);
+        REQUIRE(a.losses().size() >= 2);
+        REQUIRE(b.encounters().size() == a.encounters().size());
+        REQUIRE(b.losses().size() == a.losses().size());
+        for (std::size_t k = 0; k < a.encounters().size(); ++k) {
+            const auto &u = a.encounters()[k], &v = b.encounters()[k];
+            CHECK(u.time == v.time);
+            CHECK(u.particle == v.particle);
+            CHECK(u.body == v.body);
+            CHECK(u.distance == v.distance);
+            CHECK(u.hill_radii == v.hill_radii);
+        }
+        for (std::size_t k = 0; k < a.losses().size(); ++k) {
+            const auto &u = a.losses()[k], &v = b.losses()[k];
+            CHECK(u.time == v.time);
+            CHECK(u.particle == v.particle);
+            CHECK(u.reason == v.reason);
+            CHECK(u.body == v.body);
+            CHECK(u.distance == v.distance);
+            CHECK(u.energy == v.energy);
+        }
+        CHECK(b.time() == a.time());
+        CHECK(x.q == x_whole.q);
+        CHECK(x.p == x_whole.p);
+        CHECK(resumed.test_particles().id == whole.test_particles().id);
+
+        // A log for a stepper that tracks nothing, or none for one that does: refused.
+        wisdom_holman_stepper<State> plain({1.0, planet_mass}, 1.0, method("leapfrog_kdk"), o);
+        CHECK_THROWS_WITH_AS(plain.restore_carried(first.carried()), doctest::Contains("holds an encounter log"),
+                             invalid_argument);
+        plain.set_test_particles(s);
+        State y = system_start();
+        plain.steps(y, 0.01, 3);
+        CHECK_THROWS_WITH_AS(tracked().restore_carried(plain.carried()), doctest::Contains("holds no encounter log"),
+                             invalid_argument);
+    }
 }
 
 TEST_CASE("encounters: bad options are refused, naming the value") {

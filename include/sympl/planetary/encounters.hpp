@@ -141,6 +141,10 @@ public:
     const std::vector<encounter_record<S>>& encounters() const { return encounters_; }
     const std::vector<loss_record<S>>& losses() const { return losses_; }
     void clear_logs() { encounters_.clear(), losses_.clear(); }
+    // The time and logs a checkpoint carried (test_particle_run::read_carried).
+    void restore_logs(S time, std::vector<encounter_record<S>> encounters, std::vector<loss_record<S>> losses) {
+        time_ = time, encounters_ = std::move(encounters), losses_ = std::move(losses);
+    }
 
     // The state the next step starts from.
     void begin(const arrays& particles, const arrays& bodies) {

@@ -170,8 +170,9 @@ public:
     }
 
     // What the stepper carries between calls (its coordinates and last forces,
-    // the state it returned, the dt of its C^-1, the test particles and their
-    // MEGNO; not the planets' tangent): restored, it goes on bit for bit.
+    // the state it returned, the dt of its C^-1, the test particles, their
+    // MEGNO and encounter logs; not the planets' tangent): restored, it goes
+    // on bit for bit.
     std::vector<scalar> carried() const {
         std::vector<scalar> out;
         detail::carried_writer<scalar> w{out};
