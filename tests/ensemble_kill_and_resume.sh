@@ -9,7 +9,6 @@ set -u
 source "$(cd "$(dirname "$0")" && pwd)/kill_and_resume_helpers.sh"
 sympl=$1 work=$2 mpi=${3:-OFF}
 rm -rf "$work" && mkdir -p "$work" && cd "$work" || exit 1
-fail() { echo "FAIL: $*"; exit 1; }
 # 120 orbits of 10000 steps; a checkpoint after every 8 orbits of a rank.
 cat > orbits.toml <<'TOML'
 name = "resumed-orbits"

@@ -1,6 +1,9 @@
 # Sourced by the kill-and-resume scripts (ensemble, test-particle map): a run
 # killed once it has saved a checkpoint, alone or as one rank of an MPI job.
 
+# The script's verdict on a check that did not hold.
+fail() { echo "FAIL: $*"; exit 1; }
+
 # Until a file matching the glob $2 exists (0), or the process $1 has ended (1).
 wait_for_file() {
     while kill -0 "$1" 2> /dev/null; do

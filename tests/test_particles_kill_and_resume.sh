@@ -9,7 +9,6 @@ set -u
 source "$(cd "$(dirname "$0")" && pwd)/kill_and_resume_helpers.sh"
 sympl=$1 work=$2 mpi=${3:-OFF}
 rm -rf "$work" && mkdir -p "$work/state" && cd "$work" || exit 1
-fail() { echo "FAIL: $*"; exit 1; }
 # 2048 particles (8 pieces of 256) over 1000 steps; each piece saved as it ends.
 cat > belt.toml <<'TOML'
 name = "resumed-belt"

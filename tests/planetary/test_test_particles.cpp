@@ -289,6 +289,14 @@ TEST_CASE("test particles: a stepper restored from carried() goes on bit for bit
         // A list cut short is refused by name, and the stepper is left as it was.
         std::vector<double> cut(carried.begin(), carried.end() - 3);
         CHECK_THROWS_WITH_AS(resumed.restore_carried(cut), doctest::Contains("wisdom_holman_stepper"), invalid_argument);
+        // A damaged particle count (the 13 before ids 0..12) sizes nothing: refused by name.
+        std::vector<double> damaged = carried;
+        const std::vector<double> count_and_ids = {13, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12};
+        const auto at = std::search(damaged.begin(), damaged.end(), count_and_ids.begin(), count_and_ids.end());
+        REQUIRE(at != damaged.end());
+        *at = 1e15;
+        CHECK_THROWS_WITH_AS(resumed.restore_carried(damaged), doctest::Contains("holds a bad number of test particles"),
+                             invalid_argument);
     }
 }
 

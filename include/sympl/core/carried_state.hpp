@@ -5,7 +5,9 @@
 // and a stepper so restored continues bit for bit (the program's checkpoints
 // store the list as exact hexadecimal floats). The layout is each stepper's
 // own; a list of the wrong length or of another stepper is refused by name.
+#include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <string>
 #include <vector>
@@ -45,6 +47,15 @@ struct carried_reader {
         if (v != S(0) && v != S(1)) refuse("holds a flag that is neither 0 nor 1");
         return v == S(1);
     }
+    // A whole number below `limit` (at most 2^53, where doubles stop counting
+    // exactly), or the list refused with `what`: a count or an id.
+    std::uint64_t whole(double limit, const char* what) {
+        const S v = number();
+        if (!(v >= S(0) && v < S(std::min(limit, 9007199254740992.0))) || S(std::uint64_t(v)) != v) refuse(what);
+        return std::uint64_t(v);
+    }
+    // How many numbers are left to read: a bound for a count read next.
+    double left() const { return double(in.size() - at); }
     // A vector resized to the size written (Eigen's or std::vector); a
     // fixed-size Eigen vector takes only its own size.
     template <class V>

@@ -40,15 +40,6 @@ void write_encounter_log(const encounter_tracker<S>& t, carried_writer<S>& w) {
         for (S v : {l.time, S(l.particle), S(int(l.reason)), S(l.body), l.distance, l.energy}) w.number(v);
 }
 
-// A whole number below `limit` (at most 2^53, where doubles stop counting
-// exactly), or the list refused with `what`.
-template <class S>
-std::uint64_t carried_whole(carried_reader<S>& r, double limit, const char* what) {
-    const S v = r.number();
-    if (!(v >= S(0) && v < S(std::min(limit, 9007199254740992.0))) || S(std::uint64_t(v)) != v) r.refuse(what);
-    return std::uint64_t(v);
-}
-
 template <class S>
 void read_encounter_log(encounter_tracker<S>& t, carried_reader<S>& r, std::size_t bodies) {
     if (r.flag() != t.on())
@@ -56,20 +47,19 @@ void read_encounter_log(encounter_tracker<S>& t, carried_reader<S>& r, std::size
                         : "holds an encounter log, but the stepper tracks none (track_encounters before restoring)");
     if (!t.on()) return;
     const S time = r.number();
-    const double left = double(r.in.size() - r.at);
-    std::vector<encounter_record<S>> encounters(carried_whole(r, left / 5 + 1, "holds a bad number of encounters"));
+    std::vector<encounter_record<S>> encounters(r.whole(r.left() / 5 + 1, "holds a bad number of encounters"));
     for (auto& e : encounters) {
         e.time = r.number();
-        e.particle = carried_whole(r, 9007199254740992.0, "holds a bad particle id");
-        e.body = std::size_t(carried_whole(r, double(bodies), "holds an encounter with no such body"));
+        e.particle = r.whole(9007199254740992.0, "holds a bad particle id");
+        e.body = std::size_t(r.whole(double(bodies), "holds an encounter with no such body"));
         e.distance = r.number(), e.hill_radii = r.number();
     }
-    std::vector<loss_record<S>> losses(carried_whole(r, double(r.in.size() - r.at) / 6 + 1, "holds a bad number of losses"));
+    std::vector<loss_record<S>> losses(r.whole(r.left() / 6 + 1, "holds a bad number of losses"));
     for (auto& l : losses) {
         l.time = r.number();
-        l.particle = carried_whole(r, 9007199254740992.0, "holds a bad particle id");
-        l.reason = loss_reason(carried_whole(r, 4.0, "holds no such loss reason"));
-        l.body = std::size_t(carried_whole(r, double(bodies), "holds a loss to no such body"));
+        l.particle = r.whole(9007199254740992.0, "holds a bad particle id");
+        l.reason = loss_reason(r.whole(4.0, "holds no such loss reason"));
+        l.body = std::size_t(r.whole(double(bodies), "holds a loss to no such body"));
         l.distance = r.number(), l.energy = r.number();
     }
     t.restore_logs(time, std::move(encounters), std::move(losses));

@@ -209,14 +209,8 @@ public:
     }
     // Ids as carried numbers (exact below 2^53).
     static void read_ids(detail::carried_reader<S>& r, std::vector<std::uint64_t>& id) {
-        const S n = r.number();
-        if (!(n >= S(0)) || S(std::size_t(n)) != n) r.refuse("holds a bad number of test particles");
-        id.resize(std::size_t(n));
-        for (auto& i : id) {
-            const S v = r.number();
-            if (!(v >= S(0) && v < S(9007199254740992.0)) || S(std::uint64_t(v)) != v) r.refuse("holds a bad particle id");
-            i = std::uint64_t(v);
-        }
+        id.resize(std::size_t(r.whole(r.left(), "holds a bad number of test particles")));  // an id each to follow
+        for (auto& i : id) i = r.whole(9007199254740992.0, "holds a bad particle id");
     }
 
     // The particles' Q, v (by id()), and the star's and planets' positions
