@@ -13,7 +13,12 @@
 //       goes with it and the log's time runs from the time given;
 //   (d) a stepper restored from carried() half way logs what the whole run
 //       logs, bit for bit; a log is not restored into a stepper tracking none;
-//   (e) bad options are refused, naming the value.
+//   (e) bad options are refused, naming the value;
+//   (f) with kicks joined across steps, the tracker looks at each step's end
+//       behind the joined kick: its logs are those of a run stepped one step
+//       per call (no joins) to 1e-9 relative, on a planet heavy enough
+//       (1e-3) that a kick's share left in moves them by 1e-6; and
+//       tracking only watches: the run is the untracked one's, bit for bit.
 #include <doctest/doctest.h>
 
 #include <array>
@@ -252,7 +257,8 @@ TEST_CASE("encounters: a stepper restored from carried() half way logs what the 
         auto whole = tracked();
         whole.set_test_particles(s);
         State x_whole = system_start();
-        whole.steps(x_whole, 0.01, 200);
+        whole.steps(x_whole, 0.01, 60);  // the same calls (kicks are joined within a call only)
+        whole.steps(x_whole, 0.01, 140);
 
         auto first = tracked();
         first.set_test_particles(s);
@@ -303,6 +309,49 @@ TEST_CASE("encounters: a stepper restored from carried() half way logs what the 
         plain.steps(y, 0.01, 3);
         CHECK_THROWS_WITH_AS(tracked().restore_carried(plain.carried()), doctest::Contains("holds no encounter log"),
                              invalid_argument);
+    }
+}
+
+TEST_CASE("encounters: joined kicks leave the logs of an unjoined run, and the run untouched") {
+    const double heavy = 1e-3, dt = 0.003;
+    for (wh_coordinates coordinates : {wh_coordinates::democratic_heliocentric, wh_coordinates::jacobi}) {
+        const std::string name = coordinates_name(coordinates);
+        CAPTURE(name);
+        wisdom_holman_options o;
+        o.coordinates = coordinates;
+        test_particle_set<double> s = one(flyby(0.8, 0.05, 1.25, 0.4));
+        for (const auto& rv : {flyby(1.5, 0.08, 0.9, -0.3), flyby(2.2, 0.12, 1.1, 0.2)})
+            s.add({rv.first[0], rv.first[1], rv.first[2]}, {rv.second[0], rv.second[1], rv.second[2]});
+        encounter_options e;
+        e.log_within_hill = 3;  // 0.21: each flyby logged
+        State start = system_start();
+        start.p[4] = heavy, start.p[1] = -heavy;
+        const auto stepper = [&](bool track) {
+            wisdom_holman_stepper<State> wh({1.0, heavy}, 1.0, method("leapfrog_kdk"), o);
+            wh.set_test_particles(s);
+            if (track) wh.track_encounters(e);
+            return wh;
+        };
+        auto joined = stepper(true), unjoined = stepper(true), untracked = stepper(false);
+        State x = start, y = start, z = start;
+        for (int k = 0; k < 10; ++k) joined.steps(x, dt, 100), untracked.steps(z, dt, 100);
+        for (int k = 0; k < 1000; ++k) unjoined.steps(y, dt, 1);
+        const auto &a = joined.encounters().encounters(), &b = unjoined.encounters().encounters();
+        REQUIRE(a.size() == 3);
+        REQUIRE(b.size() == a.size());
+        for (std::size_t k = 0; k < a.size(); ++k) {
+            MESSAGE(name << ": particle " << a[k].particle << " at t = " << a[k].time << ", " << a[k].hill_radii
+                         << " Hill radii; joined against unjoined: distance " << a[k].distance / b[k].distance - 1
+                         << " relative, time " << a[k].time - b[k].time);
+            CHECK(a[k].particle == b[k].particle);
+            CHECK(std::fabs(a[k].distance / b[k].distance - 1) < 1e-9);
+            CHECK(std::fabs(a[k].time - b[k].time) < 1e-9);
+        }
+        CHECK(x.q == z.q);
+        CHECK(x.p == z.p);
+        const auto &p = joined.test_particles(), &q = untracked.test_particles();
+        CHECK(p.x == q.x);
+        CHECK(p.vz == q.vz);
     }
 }
 

@@ -117,20 +117,29 @@ public:
     }
 
     // The tracker's first look before a run of steps, and its look after each
-    // step: the particles it finds gone are removed (and logged by it).
+    // step: the particles it finds gone are removed (and logged by it). A step
+    // whose last kick ran `ahead` past its end (joined with the next step's
+    // first) is looked at as it was at its end (test_particle_flows::behind).
     template <class Flows>
     void begin(Flows& planets) {
         if (!tracker_.on()) return;
         auto& particles = flows_beside(planets);
+        particles.keep_accelerations(true);
         particles.bodies(planets.state(), bodies_);
         tracker_.begin(particles.state(), bodies_);
     }
     template <class Flows>
-    void after_step(Flows& planets, S dt) {
+    void after_step(Flows& planets, S dt, S ahead = 0) {
         if (!tracker_.on()) return;
         auto& particles = flows_beside(planets);
-        particles.bodies(planets.state(), bodies_);
-        tracker_.after_step(particles.state(), bodies_, particles.id(), dt, gone_);
+        if (ahead != 0) {
+            particles.behind(planets.state(), ahead, planets_at_end_, at_end_);
+            particles.bodies(planets_at_end_, bodies_);
+            tracker_.after_step(at_end_, bodies_, particles.id(), dt, gone_);
+        } else {
+            particles.bodies(planets.state(), bodies_);
+            tracker_.after_step(particles.state(), bodies_, particles.id(), dt, gone_);
+        }
         if (std::find(gone_.begin(), gone_.end(), char(1)) != gone_.end()) particles.remove(gone_);
     }
 
@@ -166,6 +175,7 @@ private:
     test_particle_set<S> particles_;  // inertial, as of the last return (or as set)
     encounter_tracker<S> tracker_;
     std::array<std::vector<S>, 6> bodies_;  // the tracker's bodies in the particles' frame
+    std::array<std::vector<S>, 6> planets_at_end_, at_end_;  // a joined step's end (after_step)
     std::vector<char> gone_;
 };
 

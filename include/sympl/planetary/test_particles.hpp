@@ -221,6 +221,36 @@ public:
     void bodies(const Planets& p, std::array<std::vector<S>, 6>& b) const {
         field_.bodies(p, b);
     }
+    // Whether each kick keeps the particles' accelerations, for behind().
+    void keep_accelerations(bool on) { keep_a_ = on; }
+
+    // The planets' state p and the particles' as they were t before the last
+    // kick ended, into planets and particles: a joined kick runs past a step's
+    // end by the next step's first kick, t. A kick is linear in its time at
+    // fixed positions: v - t a, and in democratic heliocentric coordinates
+    // Q - t sum_j m_j v_j / m_0 (the jump keeps every difference of positions,
+    // so a is the same before and after it, to rounding); exact to rounding.
+    // Needs keep_accelerations on at that kick.
+    template <class Planets>
+    void behind(const Planets& p, S t, std::array<std::vector<S>, 6>& planets,
+                std::array<std::vector<S>, 6>& particles) const {
+        std::array<S, 3> shift{};
+        if constexpr (!jacobi) {
+            for (std::size_t i = 0; i < p[0].size(); ++i)
+                for (std::size_t c = 0; c < 3; ++c) shift[c] += S(mass_[i + 1]) * p[c + 3][i];
+            for (auto& s : shift) s *= t / S(mass_[0]);
+        }
+        for (std::size_t c = 0; c < 3; ++c) {
+            planets[c].resize(p[c].size()), planets[c + 3].resize(p[c].size());
+            for (std::size_t i = 0; i < p[c].size(); ++i)
+                planets[c][i] = p[c][i] - shift[c], planets[c + 3][i] = p[c + 3][i] - t * p[c + 6][i];
+            particles[c].resize(size()), particles[c + 3].resize(size());
+            const S *x = q_[c].data(), *v = q_[c + 3].data(), *a = last_a_[c].data();
+            S *y = particles[c].data(), *u = particles[c + 3].data();
+            for (std::size_t i = 0; i < size(); ++i) y[i] = x[i] - shift[c], u[i] = v[i] - t * a[i];
+        }
+    }
+
     // Removes the particles with gone[i] set, keeping the others' order.
     void remove(const std::vector<char>& gone) {
         for (auto& v : q_) detail::remove_marked(v, gone);
@@ -261,11 +291,16 @@ private:
         for (std::size_t i = 0; i < size(); ++i) q_[0][i] += s * px, q_[1][i] += s * py, q_[2][i] += s * pz;
     }
 
-    // v += t a(x, y, z), block by block (x may be the lazy kernel's moved positions).
+    // v += t a(x, y, z), block by block (x may be the lazy kernel's moved
+    // positions); a kept in last_a_ while keep_accelerations is on.
     void accelerate(const S* x, const S* y, const S* z, int sources, S t) {
-        S ax[block], ay[block], az[block];
+        S block_a[3][block];
+        if (keep_a_)
+            for (auto& v : last_a_) v.resize(size());
         for (std::size_t first = 0; first < size(); first += block) {
             const std::size_t last = std::min(size(), first + block);
+            S *ax = block_a[0], *ay = block_a[1], *az = block_a[2];
+            if (keep_a_) ax = last_a_[0].data() + first, ay = last_a_[1].data() + first, az = last_a_[2].data() + first;
             field_.at(x, y, z, ax, ay, az, first, last, sources);
             for (std::size_t l = 0; l < last - first; ++l)
                 q_[3][first + l] += t * ax[l], q_[4][first + l] += t * ay[l], q_[5][first + l] += t * az[l];
@@ -290,6 +325,8 @@ private:
     std::array<std::vector<S>, 6> q_;  // Q, v per particle
     std::vector<std::uint64_t> id_;
     std::array<std::vector<S>, 3> moved_, lazy_a_;  // the lazy kernel's moved positions, their displacement
+    std::array<std::vector<S>, 3> last_a_;          // the last kick's accelerations, if kept
+    bool keep_a_ = false;
     test_particle_tangents<S> tangent_;
     std::uint64_t fallbacks_ = 0;
 };

@@ -153,9 +153,9 @@ public:
     std::vector<scalar> test_particle_megno() const { return test_particles_.megno(); }
 
     // Close encounters and losses of the test particles (encounters.hpp),
-    // checked after every step from now on (steps() then joins no sub-steps
-    // across steps); the time of the logs runs from `time`, advanced by dt per
-    // step. Removed particles leave test_particles() and the MEGNO list.
+    // checked after every step from now on (steps() then joins kicks across
+    // steps, not drifts); the time of the logs runs from `time`, advanced by dt
+    // per step. Removed particles leave test_particles() and the MEGNO list.
     void track_encounters(encounter_options options, scalar time = 0) {
         test_particles_.track_encounters(std::move(options), time);
     }
@@ -244,7 +244,10 @@ private:
         auto& particles = test_particles_.flows_beside(flows);
         // With MEGNO on, every step ends at its own end, where it is sampled.
         const bool megno = flows.tangent().started(), particles_megno = particles.tangents().started();
-        const bool join = joined_ && !megno && !particles_megno && !test_particles_.tracking();
+        // The tracker looks at a step's end behind a joined kick (it is linear
+        // in its time); a joined drift it could not look behind so cheaply.
+        const bool join = joined_ && !megno && !particles_megno &&
+                          (!test_particles_.tracking() || ops_.back().kind == substep::kick);
         test_particles_.begin(flows);
         for (std::size_t k = 0; k < n && flows.finite(); ++k) {
             for (std::size_t j = 0; j < L && flows.finite(); ++j) {
@@ -259,7 +262,8 @@ private:
             }
             if (megno && flows.finite()) flows.tangent().sample(dt);
             if (particles_megno && flows.finite()) particles.tangents().sample(dt);
-            if (flows.finite()) test_particles_.after_step(flows, dt);
+            const scalar ahead = join && k + 1 < n ? weights_.front() * dt : scalar(0);  // the next step's kick
+            if (flows.finite()) test_particles_.after_step(flows, dt, ahead);
         }
         store(flows, x, dt);
     }
