@@ -61,10 +61,13 @@ TEST_CASE("carried state: a count beyond what is left, not whole, negative or pa
     carried_reader<double> ok{three, "s"}, over{four, "s"};
     CHECK(ok.whole(ok.left(), "bad") == 3);
     CHECK_THROWS_AS(over.whole(over.left(), "bad"), invalid_argument);
-    // An id may be any whole number below 2^53.
-    const std::vector<double> ids = {two53 - 1};
+    // An id may be any whole number below 2^53, and not 2^53.
+    CHECK(carried_reader<double>::whole_limit == std::ldexp(1.0, 53));
+    const std::vector<double> ids = {two53 - 1, two53};
     carried_reader<double> id{ids, "s"};
-    CHECK(id.whole(two53, "bad id") == std::uint64_t(two53) - 1);
+    CHECK(id.whole("bad id") == std::uint64_t(two53) - 1);
+    CHECK_THROWS_WITH_AS(id.whole("holds a bad id"), doctest::Contains("holds a bad id (at number 2)"),
+                         invalid_argument);
 }
 
 TEST_CASE("carried state: a list cut short, too long, with a bad flag or a bad size is refused by name") {

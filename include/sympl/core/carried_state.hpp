@@ -47,13 +47,18 @@ struct carried_reader {
         if (v != S(0) && v != S(1)) refuse("holds a flag that is neither 0 nor 1");
         return v == S(1);
     }
-    // A whole number below `limit` (at most 2^53, where doubles stop counting
-    // exactly), or the list refused with `what`: a count or an id.
+    // 2^53: doubles count exactly below it, so no count or id carried reaches it.
+    static constexpr double whole_limit = 9007199254740992.0;
+
+    // A whole number below `limit` (at most whole_limit), or the list
+    // refused with `what`: a count.
     std::uint64_t whole(double limit, const char* what) {
         const S v = number();
-        if (!(v >= S(0) && v < S(std::min(limit, 9007199254740992.0))) || S(std::uint64_t(v)) != v) refuse(what);
+        if (!(v >= S(0) && v < S(std::min(limit, whole_limit))) || S(std::uint64_t(v)) != v) refuse(what);
         return std::uint64_t(v);
     }
+    // Any whole number below whole_limit: an id.
+    std::uint64_t whole(const char* what) { return whole(whole_limit, what); }
     // How many numbers are left to read: a bound for a count read next.
     double left() const { return double(in.size() - at); }
     // A vector resized to the size written (Eigen's or std::vector); a

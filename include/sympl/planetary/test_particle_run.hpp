@@ -50,14 +50,14 @@ void read_encounter_log(encounter_tracker<S>& t, carried_reader<S>& r, std::size
     std::vector<encounter_record<S>> encounters(r.whole(r.left() / 5 + 1, "holds a bad number of encounters"));
     for (auto& e : encounters) {
         e.time = r.number();
-        e.particle = r.whole(9007199254740992.0, "holds a bad particle id");
+        e.particle = r.whole("holds a bad particle id");
         e.body = std::size_t(r.whole(double(bodies), "holds an encounter with no such body"));
         e.distance = r.number(), e.hill_radii = r.number();
     }
     std::vector<loss_record<S>> losses(r.whole(r.left() / 6 + 1, "holds a bad number of losses"));
     for (auto& l : losses) {
         l.time = r.number();
-        l.particle = r.whole(9007199254740992.0, "holds a bad particle id");
+        l.particle = r.whole("holds a bad particle id");
         l.reason = loss_reason(r.whole(4.0, "holds no such loss reason"));
         l.body = std::size_t(r.whole(double(bodies), "holds a loss to no such body"));
         l.distance = r.number(), l.energy = r.number();

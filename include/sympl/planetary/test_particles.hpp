@@ -210,7 +210,7 @@ public:
     // Ids as carried numbers (exact below 2^53).
     static void read_ids(detail::carried_reader<S>& r, std::vector<std::uint64_t>& id) {
         id.resize(std::size_t(r.whole(r.left(), "holds a bad number of test particles")));  // an id each to follow
-        for (auto& i : id) i = r.whole(9007199254740992.0, "holds a bad particle id");
+        for (auto& i : id) i = r.whole("holds a bad particle id");
     }
 
     // The particles' Q, v (by id()), and the star's and planets' positions
