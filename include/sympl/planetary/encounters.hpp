@@ -18,11 +18,13 @@
 #include <cstdint>
 #include <limits>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "../core/error.hpp"
+#include "../core/wide_lanes.hpp"
 #include "../drivers/events.hpp"
 #include "test_particles.hpp"
 
@@ -161,10 +163,11 @@ public:
         gone.assign(n, 0);
         const std::size_t losses_before = losses_.size();
         for (std::size_t k = 1; k < bodies; ++k) hill_[k] = hill_radius(b, k);  // once per step, not per pair
+        const bool wide = std::is_floating_point_v<S> && wide_lanes();
         for (std::size_t i = 0; i < n; ++i) {
             if (i % block == 0) {
-                mark_pairs(p, b, i, std::min(n, i + block));
-                mark_quiet(p, b, i, std::min(n, i + block));
+                if (wide) mark_wide(p, b, i, std::min(n, i + block));
+                else mark_pairs(p, b, i, std::min(n, i + block)), mark_quiet(p, b, i, std::min(n, i + block));
             }
             if (quiet_[i % block] != 0) continue;
             const std::array<S, 3> r{p[0][i] - b[0][0], p[1][i] - b[1][0], p[2][i] - b[2][0]};
@@ -223,18 +226,24 @@ private:
             S* look = look_.data() + (k - 1) * block;
             // The mark is a number chosen by a select: GCC 12 vectorises that
             // with SSE2, not a bool converted to an integer. The marks do not
-            // alias the coordinates, and ivdep says so (13 arrays are more
-            // than GCC checks at run time).
-#pragma GCC ivdep
+            // alias the coordinates, and SYMPL_ARRAYS_APART says so (13
+            // arrays are more than GCC checks at run time).
+            SYMPL_ARRAYS_APART
             for (std::size_t i = first; i < last; ++i) {
                 const S a0 = x0[i] - q0[0], a1 = x1[i] - q0[1], a2 = x2[i] - q0[2];
                 const S g0 = a0 * (u0[i] - q0[3]) + a1 * (u1[i] - q0[4]) + a2 * (u2[i] - q0[5]);
                 const S e0 = y0[i] - q1[0], e1 = y1[i] - q1[1], e2 = y2[i] - q1[2];
                 const S g1 = e0 * (v0[i] - q1[3]) + e1 * (v1[i] - q1[4]) + e2 * (v2[i] - q1[5]);
                 const S end2 = e0 * e0 + e1 * e1 + e2 * e2;
-                look[i - first] = ((g0 < 0) & (g1 > 0)) | (end2 <= reach2) ? S(1) : S(0);
+                look[i - first] = (((g0 < 0) & (g1 > 0)) | (end2 <= reach2)) ? S(1) : S(0);
             }
         }
+    }
+
+    // Both markings, compiled for AVX2 (wide_lanes.hpp).
+    SYMPL_AVX2_CLONE void mark_wide(const arrays& p, const arrays& b, std::size_t first, std::size_t last) {
+        mark_pairs(p, b, first, last);
+        mark_quiet(p, b, first, last);
     }
 
     // quiet_[i - first] = 1 for the particles [first, last) that no check
@@ -255,7 +264,7 @@ private:
         S* quiet = quiet_.data();
         const std::size_t m = last - first;
         star_.resize(block);
-#pragma GCC ivdep
+        SYMPL_ARRAYS_APART
         for (std::size_t i = first; i < last; ++i) {
             const S d0 = x0[i] - c0, d1 = x1[i] - c1, d2 = x2[i] - c2;
             star_[i - first] = d0 * d0 + d1 * d1 + d2 * d2;
@@ -263,7 +272,7 @@ private:
         // Eigen's packet square root: std::sqrt's loop keeps a branch to set errno.
         using column = Eigen::Array<S, Eigen::Dynamic, 1>;
         Eigen::Map<column>(star_.data(), Eigen::Index(m)) = Eigen::Map<const column>(star_.data(), Eigen::Index(m)).sqrt();
-#pragma GCC ivdep
+        SYMPL_ARRAYS_APART
         for (std::size_t i = first; i < last; ++i) {
             const S star = star_[i - first];
             const S kinetic = (u0[i] * u0[i] + u1[i] * u1[i] + u2[i] * u2[i]) / 2, potential = total_gm_ / star;

@@ -19,6 +19,7 @@
 #include <type_traits>
 
 #include "../core/error.hpp"
+#include "../core/wide_lanes.hpp"
 #include "kepler_drift.hpp"
 #include "kepler_equation.hpp"
 #include "stumpff.hpp"
@@ -185,6 +186,12 @@ void short_drift_lanes(lane_bodies<S, W>& b, S h, bool (&done)[W]) {
     for (int l = 0; l < W; ++l) done[l] = w.ok[l] != 0;
 }
 
+// The same, compiled for AVX2 (wide_lanes.hpp).
+template <class S, int W>
+SYMPL_AVX2_CLONE void short_drift_lanes_wide(lane_bodies<S, W>& b, S h, bool (&done)[W]) {
+    short_drift_lanes<S, W>(b, h, done);
+}
+
 // Quartic iterations in all lanes together from each lane's starting value,
 // with a per-lane convergence mask (the test of solve_universal); active[l]
 // is left true for a lane not converged in kepler_lane_iterations.
@@ -274,6 +281,7 @@ std::size_t general_lanes(const kepler_bodies<S>& b, GM gm_of, S h, const std::s
 template <class S, int W, class GM>
 std::size_t drift_groups(const kepler_bodies<S>& b, GM gm_of, S h, std::size_t first, std::size_t last) {
     std::size_t fallbacks = 0;
+    const bool wide = std::is_floating_point_v<S> && W >= 4 && wide_lanes();
     for (; first < last; first += W) {
         const int count = int(std::min<std::size_t>(W, last - first));
         lane_bodies<S, W> lanes;
@@ -284,7 +292,8 @@ std::size_t drift_groups(const kepler_bodies<S>& b, GM gm_of, S h, std::size_t f
             lanes.vx[l] = b.vx[i]; lanes.vy[l] = b.vy[i]; lanes.vz[l] = b.vz[i];
             lanes.gm[l] = gm_of(i);
         }
-        short_drift_lanes<S, W>(lanes, h, done);
+        if (wide) short_drift_lanes_wide<S, W>(lanes, h, done);
+        else short_drift_lanes<S, W>(lanes, h, done);
         std::size_t rest[W];
         int left = 0;
         for (int l = 0; l < count; ++l) {

@@ -17,6 +17,7 @@
 
 #include <Eigen/Core>
 
+#include "../core/wide_lanes.hpp"
 #include "coordinates.hpp"
 #include "interaction.hpp"
 
@@ -83,6 +84,13 @@ public:
                 ax[l] += f * x[first + l], ay[l] += f * y[first + l], az[l] += f * z[first + l];
             }
         }
+    }
+
+    // The same, compiled for AVX2 (wide_lanes.hpp).
+    template <class T>
+    SYMPL_AVX2_CLONE void at_wide(const T* x, const T* y, const T* z, T* ax, T* ay, T* az, std::size_t first,
+                                  std::size_t last, int set) const {
+        at(x, y, z, ax, ay, az, first, last, set);
     }
 
     // The star's and planets' positions and velocities in the particles'

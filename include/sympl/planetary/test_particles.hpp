@@ -297,11 +297,13 @@ private:
         S block_a[3][block];
         if (keep_a_)
             for (auto& v : last_a_) v.resize(size());
+        const bool wide = std::is_floating_point_v<S> && wide_lanes();
         for (std::size_t first = 0; first < size(); first += block) {
             const std::size_t last = std::min(size(), first + block);
             S *ax = block_a[0], *ay = block_a[1], *az = block_a[2];
             if (keep_a_) ax = last_a_[0].data() + first, ay = last_a_[1].data() + first, az = last_a_[2].data() + first;
-            field_.at(x, y, z, ax, ay, az, first, last, sources);
+            if (wide) field_.at_wide(x, y, z, ax, ay, az, first, last, sources);
+            else field_.at(x, y, z, ax, ay, az, first, last, sources);
             for (std::size_t l = 0; l < last - first; ++l)
                 q_[3][first + l] += t * ax[l], q_[4][first + l] += t * ay[l], q_[5][first + l] += t * az[l];
         }
