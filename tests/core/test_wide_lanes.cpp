@@ -7,12 +7,16 @@
 //       particles that cross Jupiter's and Saturn's orbits, encounters
 //       tracked and particles removed, in both coordinates: planets,
 //       particles and both logs the same, bit for bit.
+//   (c) the square roots in vector registers, four and two wide, against
+//       std::sqrt over every class of double and every tail length.
 // On a CPU without AVX2 both runs take the same loops; the test says so.
 #include <doctest/doctest.h>
 
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstring>
+#include <limits>
 #include <vector>
 
 #include <sympl/core/wide_lanes.hpp>
@@ -70,6 +74,35 @@ TEST_CASE("wide lanes: Kepler drifts in AVX2 are the bits of the build's own loo
             for (int k = 0; k < 20; ++k) drift(narrow, h);
         }
         for (std::size_t c = 0; c < 6; ++c) CHECK(wide[c] == narrow[c]);
+    }
+}
+
+namespace {
+// The bits, NaN's included (== would pass no NaN).
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+}  // namespace
+
+TEST_CASE("wide lanes: square roots in vector registers are std::sqrt's, bit for bit") {
+    using limits = std::numeric_limits<double>;
+    // Zeros, subnormals, the ends of the range, values that round either
+    // way, infinities, negatives and NaN (sqrt gives the same default NaN).
+    std::vector<double> x = {0.0, -0.0, limits::denorm_min(), 3 * limits::denorm_min(), limits::min(), limits::max(),
+                             2.0, 3.0, 1 + limits::epsilon(), 1 - limits::epsilon() / 2, limits::infinity(),
+                             -limits::infinity(), -1.0, -limits::denorm_min(), limits::quiet_NaN()};
+    for (int i = 1; i <= 200; ++i) x.push_back(std::ldexp(1.0 + 0.0137 * i, (i % 41) - 20));
+    for (std::size_t m = 0; m <= x.size(); m += (m < 12 ? 1 : 37)) {  // every tail after 4 and 2 at a time
+        CAPTURE(m);
+        std::vector<double> wide(m), narrow(m), in_place(x.begin(), x.begin() + std::ptrdiff_t(m));
+        if (wide_lanes()) detail::square_roots_wide(x.data(), wide.data(), m);
+        else detail::square_roots<false>(x.data(), wide.data(), m);
+        detail::square_roots<false>(x.data(), narrow.data(), m);
+        detail::square_roots<false>(in_place.data(), in_place.data(), m);
+        for (std::size_t i = 0; i < m; ++i) {
+            const double expected = std::sqrt(x[i]);
+            CHECK(same_bits(wide[i], expected));
+            CHECK(same_bits(narrow[i], expected));
+            CHECK(same_bits(in_place[i], expected));
+        }
     }
 }
 

@@ -52,8 +52,9 @@ constexpr bool any_of(B... b) {
 // The lane loops are written so that GCC vectorises them with SSE2 as with
 // AVX-512: every value is computed in every lane and stored, and only then
 // selected; masks are held as S, 1 or 0 (bools beside doubles do not
-// vectorise); the square root has a loop of its own (std::sqrt keeps a
-// branch to set errno); and the lanes are members of one struct, which the
+// vectorise); the square roots are taken in vector registers by
+// square_roots (wide_lanes.hpp: a loop of std::sqrt keeps a branch to set
+// errno and runs one lane at a time); and the lanes are members of one struct, which the
 // compiler knows do not overlap.
 template <class S, int W>
 struct lane_bodies {
@@ -69,10 +70,10 @@ struct short_lanes {
 
 // The orbit of each lane and starting_value's series starter, taken to
 // |w| <= 2 here (the convergence test decides). Whether any lane can go on.
-template <class S, int W>
+template <bool Wide, class S, int W>
 [[gnu::always_inline]] inline bool short_start(const lane_bodies<S, W>& b, S h, short_lanes<S, W>& w) {
     for (int l = 0; l < W; ++l) w.r0[l] = b.x[l] * b.x[l] + b.y[l] * b.y[l] + b.z[l] * b.z[l];
-    for (int l = 0; l < W; ++l) w.r0[l] = std::sqrt(w.r0[l]);
+    square_roots<Wide>(w.r0, w.r0, W);
     for (int l = 0; l < W; ++l) {
         w.per_r0[l] = 1 / w.r0[l];
         w.eta0[l] = b.x[l] * b.vx[l] + b.y[l] * b.vy[l] + b.z[l] * b.vz[l];
@@ -85,9 +86,9 @@ template <class S, int W>
         w.s[l] = series_start(u, A, B, ww);
         w.ok[l] = all_of(std::fabs(A) + std::fabs(B) <= S(0.125), std::fabs(ww) <= 2) ? S(1) : S(0);
     }
-    bool any = false;
-    for (int l = 0; l < W; ++l) any = any || w.ok[l] != 0;
-    return any;
+    S any(0);
+    for (int l = 0; l < W; ++l) any = any < w.ok[l] ? w.ok[l] : any;  // a max: no branch
+    return any != 0;
 }
 
 // Kepler's equation at the starter (Stumpff's series summed once, no
@@ -109,12 +110,13 @@ template <int terms, class S, int W>
 template <class S, int W>
 [[gnu::always_inline]] inline void short_solve(const lane_bodies<S, W>& b, S h, short_lanes<S, W>& w) {
     constexpr S eps = std::numeric_limits<S>::epsilon();
-    S y[W], largest(0);
+    S y[W], taken[W], largest(0);
     for (int l = 0; l < W; ++l) {
         y[l] = w.beta[l] * (w.s[l] * w.s[l]);
         w.ok[l] = all_of(w.ok[l] != 0, std::fabs(y[l]) <= S(kepler_short_x)) ? S(1) : S(0);
-        largest = w.ok[l] != 0 && std::fabs(y[l]) > largest ? std::fabs(y[l]) : largest;
+        taken[l] = w.ok[l] != 0 ? std::fabs(y[l]) : S(0);
     }
+    for (int l = 0; l < W; ++l) largest = largest < taken[l] ? taken[l] : largest;  // a max: no branch
     // As many terms as the group's largest |y| needs: for double 7 at 0.1 (a
     // Wisdom-Holman step of a twentieth of an orbit or less), 9 at 1, else
     // the range's 12.
@@ -155,12 +157,12 @@ template <class S, int W>
 // solve's path for a Wisdom-Holman drift with its tests. A lane outside its
 // range, or failing a test, has done[l] = false and is for the bracketed
 // solve, from the caller's copy (every lane of b is overwritten); a done
-// lane holds the drifted state.
-template <class S, int W>
+// lane holds the drifted state. Wide: in the AVX2 clone.
+template <class S, int W, bool Wide = false>
 void short_drift_lanes(lane_bodies<S, W>& b, S h, bool (&done)[W]) {
     constexpr S eps = std::numeric_limits<S>::epsilon(), big = std::numeric_limits<S>::max();
     short_lanes<S, W> w;
-    const bool any = short_start(b, h, w);
+    const bool any = short_start<Wide>(b, h, w);
     for (int l = 0; l < W; ++l) done[l] = false;
     if (!any) return;
     short_solve(b, h, w);
@@ -186,10 +188,44 @@ void short_drift_lanes(lane_bodies<S, W>& b, S h, bool (&done)[W]) {
     for (int l = 0; l < W; ++l) done[l] = w.ok[l] != 0;
 }
 
+// The bodies first..first + count (count <= W; the other lanes repeat body
+// first, their results dropped) by short_drift_lanes, the done ones written
+// back; done[l] false for those left to the caller. Wide: in the AVX2 clone,
+// the copies in and out too.
+template <class S, int W, bool Wide, class GM>
+[[gnu::always_inline]] inline void short_drift_group(const kepler_bodies<S>& b, GM gm_of, S h, std::size_t first,
+                                                    int count, bool (&done)[W]) {
+    lane_bodies<S, W> lanes;
+    const auto copy_in = [&](int l, std::size_t i) {
+        lanes.x[l] = b.x[i], lanes.y[l] = b.y[i], lanes.z[l] = b.z[i];
+        lanes.vx[l] = b.vx[i], lanes.vy[l] = b.vy[i], lanes.vz[l] = b.vz[i];
+        lanes.gm[l] = gm_of(i);
+    };
+    const auto copy_out = [&](int l, std::size_t i) {
+        b.x[i] = lanes.x[l], b.y[i] = lanes.y[l], b.z[i] = lanes.z[l];
+        b.vx[i] = lanes.vx[l], b.vy[i] = lanes.vy[l], b.vz[i] = lanes.vz[l];
+    };
+    // A whole group (all but the last) in and out in vector loads and
+    // stores; a group with lanes left over, lane by lane.
+    if (count == W)
+        for (int l = 0; l < W; ++l) copy_in(l, first + std::size_t(l));
+    else
+        for (int l = 0; l < W; ++l) copy_in(l, first + std::size_t(l < count ? l : 0));
+    short_drift_lanes<S, W, Wide>(lanes, h, done);
+    int all_done = 1;
+    for (int l = 0; l < W; ++l) all_done &= int(done[l]);
+    if (count == W && all_done != 0)
+        for (int l = 0; l < W; ++l) copy_out(l, first + std::size_t(l));
+    else
+        for (int l = 0; l < count; ++l)
+            if (done[l]) copy_out(l, first + std::size_t(l));
+}
+
 // The same, compiled for AVX2 (wide_lanes.hpp).
-template <class S, int W>
-SYMPL_AVX2_CLONE void short_drift_lanes_wide(lane_bodies<S, W>& b, S h, bool (&done)[W]) {
-    short_drift_lanes<S, W>(b, h, done);
+template <class S, int W, class GM>
+SYMPL_AVX2_CLONE void short_drift_group_wide(const kepler_bodies<S>& b, GM gm_of, S h, std::size_t first, int count,
+                                             bool (&done)[W]) {
+    short_drift_group<S, W, true>(b, gm_of, h, first, count, done);
 }
 
 // Quartic iterations in all lanes together from each lane's starting value,
@@ -284,27 +320,13 @@ std::size_t drift_groups(const kepler_bodies<S>& b, GM gm_of, S h, std::size_t f
     const bool wide = std::is_floating_point_v<S> && W >= 4 && wide_lanes();
     for (; first < last; first += W) {
         const int count = int(std::min<std::size_t>(W, last - first));
-        lane_bodies<S, W> lanes;
         bool done[W];
-        for (int l = 0; l < W; ++l) {
-            const std::size_t i = first + std::size_t(l < count ? l : 0);
-            lanes.x[l] = b.x[i]; lanes.y[l] = b.y[i]; lanes.z[l] = b.z[i];
-            lanes.vx[l] = b.vx[i]; lanes.vy[l] = b.vy[i]; lanes.vz[l] = b.vz[i];
-            lanes.gm[l] = gm_of(i);
-        }
-        if (wide) short_drift_lanes_wide<S, W>(lanes, h, done);
-        else short_drift_lanes<S, W>(lanes, h, done);
+        if (wide) short_drift_group_wide<S, W>(b, gm_of, h, first, count, done);
+        else short_drift_group<S, W, false>(b, gm_of, h, first, count, done);
         std::size_t rest[W];
         int left = 0;
-        for (int l = 0; l < count; ++l) {
-            const std::size_t i = first + std::size_t(l);
-            if (!done[l]) {
-                rest[left++] = i;
-                continue;
-            }
-            b.x[i] = lanes.x[l]; b.y[i] = lanes.y[l]; b.z[i] = lanes.z[l];
-            b.vx[i] = lanes.vx[l]; b.vy[i] = lanes.vy[l]; b.vz[i] = lanes.vz[l];
-        }
+        for (int l = 0; l < count; ++l)
+            if (!done[l]) rest[left++] = first + std::size_t(l);
         if (left == 1) {
             const std::size_t i = rest[0];
             S r[3] = {b.x[i], b.y[i], b.z[i]}, v[3] = {b.vx[i], b.vy[i], b.vz[i]};

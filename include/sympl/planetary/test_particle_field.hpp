@@ -15,7 +15,6 @@
 #include <type_traits>
 #include <vector>
 
-#include <Eigen/Core>
 
 #include "../core/wide_lanes.hpp"
 #include "coordinates.hpp"
@@ -56,32 +55,40 @@ public:
 
     // The accelerations of particles first..last (at most `block`) at
     // (x, y, z) into (ax, ay, az), from index 0, by the sources of `set`.
-    template <class T>
+    // Wide: in the AVX2 clone (at_wide). Each source's position and GM are
+    // held in locals: read through the vectors inside the loop they would
+    // be reloaded after every store, and the loop would not vectorise.
+    template <class T, bool Wide = false>
     void at(const T* x, const T* y, const T* z, T* ax, T* ay, T* az, std::size_t first, std::size_t last,
             int set) const {
         const auto& [sx, sy, sz] = sources_[std::size_t(set)];
-        const std::size_t m = last - first;
+        const std::size_t m = last - first, sources = source_gm_.size();
+        x += first, y += first, z += first;
         T r2[block], r[block];
         for (std::size_t l = 0; l < m; ++l) ax[l] = ay[l] = az[l] = T(0);
-        for (std::size_t k = 0; k < source_gm_.size(); ++k) {
+        for (std::size_t k = 0; k < sources; ++k) {
+            const S px = sx[k], py = sy[k], pz = sz[k], gm = source_gm_[k];
+            SYMPL_ARRAYS_APART
             for (std::size_t l = 0; l < m; ++l) {
-                const T dx = sx[k] - x[first + l], dy = sy[k] - y[first + l], dz = sz[k] - z[first + l];
+                const T dx = px - x[l], dy = py - y[l], dz = pz - z[l];
                 r2[l] = dx * dx + dy * dy + dz * dz;
             }
-            square_roots(r2, r, m);
+            detail::square_roots<Wide>(r2, r, m);
+            SYMPL_ARRAYS_APART
             for (std::size_t l = 0; l < m; ++l) {
-                const T f = source_gm_[k] / (r2[l] * r[l]);
-                ax[l] += f * (sx[k] - x[first + l]), ay[l] += f * (sy[k] - y[first + l]),
-                    az[l] += f * (sz[k] - z[first + l]);
+                const T f = gm / (r2[l] * r[l]);
+                ax[l] += f * (px - x[l]), ay[l] += f * (py - y[l]), az[l] += f * (pz - z[l]);
             }
         }
         if constexpr (Jacobi) {
-            for (std::size_t l = 0; l < m; ++l)
-                r2[l] = x[first + l] * x[first + l] + y[first + l] * y[first + l] + z[first + l] * z[first + l];
-            square_roots(r2, r, m);
+            SYMPL_ARRAYS_APART
+            for (std::size_t l = 0; l < m; ++l) r2[l] = x[l] * x[l] + y[l] * y[l] + z[l] * z[l];
+            detail::square_roots<Wide>(r2, r, m);
+            const S gm0 = gm0_;
+            SYMPL_ARRAYS_APART
             for (std::size_t l = 0; l < m; ++l) {
-                const T f = gm0_ / (r2[l] * r[l]);
-                ax[l] += f * x[first + l], ay[l] += f * y[first + l], az[l] += f * z[first + l];
+                const T f = gm0 / (r2[l] * r[l]);
+                ax[l] += f * x[l], ay[l] += f * y[l], az[l] += f * z[l];
             }
         }
     }
@@ -90,7 +97,7 @@ public:
     template <class T>
     SYMPL_AVX2_CLONE void at_wide(const T* x, const T* y, const T* z, T* ax, T* ay, T* az, std::size_t first,
                                   std::size_t last, int set) const {
-        at(x, y, z, ax, ay, az, first, last, set);
+        at<T, true>(x, y, z, ax, ay, az, first, last, set);
     }
 
     // The star's and planets' positions and velocities in the particles'
@@ -119,19 +126,6 @@ public:
 private:
     jacobi_constants<S> constants() const {
         return jacobi_constants<S>{std::span<const double>(mass_), eta_.data(), gm_.data(), G_};
-    }
-
-    // r = sqrt(r2) over m values: for S by Eigen's packet square root, which
-    // vectorises (std::sqrt's loop does not: it keeps a branch to set errno).
-    template <class T>
-    static void square_roots(const T* r2, T* r, std::size_t m) {
-        if constexpr (std::is_same_v<T, S>) {
-            using array = Eigen::Array<S, Eigen::Dynamic, 1>;
-            Eigen::Map<array>(r, Eigen::Index(m)) = Eigen::Map<const array>(r2, Eigen::Index(m)).sqrt();
-        } else {
-            using std::sqrt;
-            for (std::size_t l = 0; l < m; ++l) r[l] = sqrt(r2[l]);
-        }
     }
 
     std::vector<double> mass_;
