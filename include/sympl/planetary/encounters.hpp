@@ -21,7 +21,6 @@
 #include <type_traits>
 #include <vector>
 
-#include <Eigen/Core>
 
 #include "../core/error.hpp"
 #include "../core/wide_lanes.hpp"
@@ -155,19 +154,37 @@ public:
     }
 
     // After a step of dt ending at particles and bodies (star first); gone[i]
-    // set for each particle removed (logged). The ends become the next step's start.
+    // set for each particle removed (logged). The ends become the next step's
+    // start: copied, or taken by swapping with p (after_step_taking: p
+    // leaves with the previous start, for its owner to overwrite).
     void after_step(const arrays& p, const arrays& b, const std::vector<std::uint64_t>& id, S dt,
                     std::vector<char>& gone) {
+        const std::size_t losses_before = losses_.size();
+        check(p, b, id, dt, gone);
+        previous_ = p;
+        keep_ends(b, gone, losses_before);
+    }
+    void after_step_taking(arrays& p, const arrays& b, const std::vector<std::uint64_t>& id, S dt,
+                           std::vector<char>& gone) {
+        const std::size_t losses_before = losses_.size();
+        check(p, b, id, dt, gone);
+        std::swap(previous_, p);
+        keep_ends(b, gone, losses_before);
+    }
+
+private:
+    static constexpr std::size_t block = 256;  // particles whose pairs are marked at a time
+
+    void check(const arrays& p, const arrays& b, const std::vector<std::uint64_t>& id, S dt, std::vector<char>& gone) {
         time_ += dt;
         const std::size_t n = p[0].size(), bodies = b[0].size();
         gone.assign(n, 0);
-        const std::size_t losses_before = losses_.size();
         for (std::size_t k = 1; k < bodies; ++k) hill_[k] = hill_radius(b, k);  // once per step, not per pair
         const bool wide = std::is_floating_point_v<S> && wide_lanes();
         for (std::size_t i = 0; i < n; ++i) {
             if (i % block == 0) {
-                if (wide) mark_wide(p, b, i, std::min(n, i + block));
-                else mark_pairs(p, b, i, std::min(n, i + block)), mark_quiet(p, b, i, std::min(n, i + block));
+                if (wide) mark_wide(p, b, i, std::min(n, i + block), dt);
+                else mark_pairs(p, b, i, std::min(n, i + block), dt), mark_quiet(p, b, i, std::min(n, i + block));
             }
             if (quiet_[i % block] != 0) continue;
             const std::array<S, 3> r{p[0][i] - b[0][0], p[1][i] - b[1][0], p[2][i] - b[2][0]};
@@ -192,30 +209,36 @@ public:
             else if (star > S(options_.unbound_distance) && energy > 0)
                 lose(gone, i, id[i], loss_reason::unbound, 0, star, energy);
         }
-        previous_ = p;
+    }
+
+    // previous_ holds this step's particles; the bodies and the removals too.
+    void keep_ends(const arrays& b, const std::vector<char>& gone, std::size_t losses_before) {
         previous_bodies_ = b;
         if (losses_.size() != losses_before)  // most steps lose none: no pass over the arrays
             for (std::size_t c = 0; c < 6; ++c) detail::remove_marked(previous_[c], gone);
     }
 
-private:
-    static constexpr std::size_t block = 256;  // particles whose pairs are marked at a time
-
     // look_[(k - 1) * block + i - first] for particles [first, last): whether
     // the pair with body k needs approach(). The interpolant's d.d' at the
     // step's ends is d0.u0 and d1.u1; most pairs recede or close over the
-    // whole step (no sign change from < 0 to > 0: no minimum inside), and one
-    // whose end is farther than its radius cannot have collided there (the
-    // squares compared with a margin of rounding). A loop per body over
+    // whole step (no sign change from < 0 to > 0: no minimum inside); of the
+    // others, approach() looks only where min(|d0|, |d1|) - 2 |dt| max(|u0|,
+    // |u1|) < reach, which implies min(d0^2, d1^2) < 2 reach^2 + 8 dt^2
+    // max(u0^2, u1^2) ((a + b)^2 <= 2 a^2 + 2 b^2), tested here; and one
+    // whose end is farther than its radius cannot have collided there. The
+    // squares are compared with a margin of rounding. A loop per body over
     // particles in arrays, with no branch and no square root, in SIMD lanes
     // (docs/planetary.md).
-    void mark_pairs(const arrays& p, const arrays& b, std::size_t first, std::size_t last) {
+    void mark_pairs(const arrays& p, const arrays& b, std::size_t first, std::size_t last, S dt) {
         const std::size_t bodies = b[0].size();
         if (bodies < 2) return;
         look_.resize((bodies - 1) * block);
+        constexpr S eps = std::numeric_limits<S>::epsilon();
         for (std::size_t k = 1; k < bodies; ++k) {
             const S radius = options_.radius.empty() ? S(0) : S(options_.radius[k]);
-            const S reach2 = radius * radius * (1 + 8 * std::numeric_limits<S>::epsilon());
+            const S reach2 = radius * radius * (1 + 8 * eps);
+            const S reach = std::max(radius, S(options_.log_within_hill) * hill_[k]);
+            const S near = 2 * reach * reach * (1 + 64 * eps), pace = 8 * dt * dt * (1 + 64 * eps);
             const S q0[6] = {previous_bodies_[0][k], previous_bodies_[1][k], previous_bodies_[2][k],
                              previous_bodies_[3][k], previous_bodies_[4][k], previous_bodies_[5][k]};
             const S q1[6] = {b[0][k], b[1][k], b[2][k], b[3][k], b[4][k], b[5][k]};
@@ -231,19 +254,23 @@ private:
             SYMPL_ARRAYS_APART
             for (std::size_t i = first; i < last; ++i) {
                 const S a0 = x0[i] - q0[0], a1 = x1[i] - q0[1], a2 = x2[i] - q0[2];
-                const S g0 = a0 * (u0[i] - q0[3]) + a1 * (u1[i] - q0[4]) + a2 * (u2[i] - q0[5]);
+                const S w0 = u0[i] - q0[3], w1 = u1[i] - q0[4], w2 = u2[i] - q0[5];
                 const S e0 = y0[i] - q1[0], e1 = y1[i] - q1[1], e2 = y2[i] - q1[2];
-                const S g1 = e0 * (v0[i] - q1[3]) + e1 * (v1[i] - q1[4]) + e2 * (v2[i] - q1[5]);
-                const S end2 = e0 * e0 + e1 * e1 + e2 * e2;
-                look[i - first] = (((g0 < 0) & (g1 > 0)) | (end2 <= reach2)) ? S(1) : S(0);
+                const S z0 = v0[i] - q1[3], z1 = v1[i] - q1[4], z2 = v2[i] - q1[5];
+                const S g0 = a0 * w0 + a1 * w1 + a2 * w2, g1 = e0 * z0 + e1 * z1 + e2 * z2;
+                const S start2 = a0 * a0 + a1 * a1 + a2 * a2, end2 = e0 * e0 + e1 * e1 + e2 * e2;
+                const S speed0 = w0 * w0 + w1 * w1 + w2 * w2, speed1 = z0 * z0 + z1 * z1 + z2 * z2;
+                const S closest2 = start2 < end2 ? start2 : end2, speed2 = speed0 > speed1 ? speed0 : speed1;
+                look[i - first] =
+                    (((g0 < 0) & (g1 > 0) & (closest2 < near + pace * speed2)) | (end2 <= reach2)) ? S(1) : S(0);
             }
         }
     }
 
     // Both markings, compiled for AVX2 (wide_lanes.hpp).
-    SYMPL_AVX2_CLONE void mark_wide(const arrays& p, const arrays& b, std::size_t first, std::size_t last) {
-        mark_pairs(p, b, first, last);
-        mark_quiet(p, b, first, last);
+    SYMPL_AVX2_CLONE void mark_wide(const arrays& p, const arrays& b, std::size_t first, std::size_t last, S dt) {
+        mark_pairs(p, b, first, last, dt);
+        mark_quiet<true>(p, b, first, last);
     }
 
     // quiet_[i - first] = 1 for the particles [first, last) that no check
@@ -252,7 +279,8 @@ private:
     // marked, each with a margin of rounding (a vector sqrt or a contracted
     // product may differ from the scalar one by an ulp). The others, a few per
     // step, take every check; all particles used to, a square root, a division
-    // and seven tests each, scalar.
+    // and seven tests each, scalar. Wide: in the AVX2 clone.
+    template <bool Wide = false>
     void mark_quiet(const arrays& p, const arrays& b, std::size_t first, std::size_t last) {
         quiet_.resize(block);
         const S margin = 16 * std::numeric_limits<S>::epsilon();
@@ -269,9 +297,7 @@ private:
             const S d0 = x0[i] - c0, d1 = x1[i] - c1, d2 = x2[i] - c2;
             star_[i - first] = d0 * d0 + d1 * d1 + d2 * d2;
         }
-        // Eigen's packet square root: std::sqrt's loop keeps a branch to set errno.
-        using column = Eigen::Array<S, Eigen::Dynamic, 1>;
-        Eigen::Map<column>(star_.data(), Eigen::Index(m)) = Eigen::Map<const column>(star_.data(), Eigen::Index(m)).sqrt();
+        detail::square_roots<Wide>(star_.data(), star_.data(), m);
         SYMPL_ARRAYS_APART
         for (std::size_t i = first; i < last; ++i) {
             const S star = star_[i - first];

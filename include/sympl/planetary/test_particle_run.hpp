@@ -135,7 +135,7 @@ public:
         if (ahead != 0) {
             particles.behind(planets.state(), ahead, planets_at_end_, at_end_);
             particles.bodies(planets_at_end_, bodies_);
-            tracker_.after_step(at_end_, bodies_, particles.id(), dt, gone_);
+            tracker_.after_step_taking(at_end_, bodies_, particles.id(), dt, gone_);  // at_end_ is scratch
         } else {
             particles.bodies(planets.state(), bodies_);
             tracker_.after_step(particles.state(), bodies_, particles.id(), dt, gone_);
