@@ -21,7 +21,6 @@
 #include <type_traits>
 #include <vector>
 
-
 #include "../core/error.hpp"
 #include "../core/wide_lanes.hpp"
 #include "../drivers/events.hpp"

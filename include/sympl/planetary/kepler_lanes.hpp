@@ -54,8 +54,8 @@ constexpr bool any_of(B... b) {
 // selected; masks are held as S, 1 or 0 (bools beside doubles do not
 // vectorise); the square roots are taken in vector registers by
 // square_roots (wide_lanes.hpp: a loop of std::sqrt keeps a branch to set
-// errno and runs one lane at a time); and the lanes are members of one struct, which the
-// compiler knows do not overlap.
+// errno and runs one lane at a time); and the lanes are members of one
+// struct, which the compiler knows do not overlap.
 template <class S, int W>
 struct lane_bodies {
     S x[W], y[W], z[W], vx[W], vy[W], vz[W], gm[W];

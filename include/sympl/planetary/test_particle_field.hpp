@@ -15,7 +15,6 @@
 #include <type_traits>
 #include <vector>
 
-
 #include "../core/wide_lanes.hpp"
 #include "coordinates.hpp"
 #include "interaction.hpp"
