@@ -69,7 +69,7 @@ struct kepler_terms {
 };
 
 template <class T, class R, class E, class Z, class B, class G, class H, class U>
-kepler_terms<T> kepler_equation(const R& r0, const E& eta0, const Z& zeta0, const B& beta, const G& gm, const H& h,
+[[gnu::always_inline]] inline kepler_terms<T> kepler_equation(const R& r0, const E& eta0, const Z& zeta0, const B& beta, const G& gm, const H& h,
                                 const U& s, const stumpff_values<T>& c) {
     kepler_terms<T> k;
     const U ss = s * s;
@@ -84,7 +84,7 @@ kepler_terms<T> kepler_equation(const R& r0, const E& eta0, const Z& zeta0, cons
 
 // The rounding level of f.
 template <class S>
-S kepler_noise(const kepler_terms<S>& k, S h) {
+[[gnu::always_inline]] inline S kepler_noise(const kepler_terms<S>& k, S h) {
     return 8 * std::numeric_limits<S>::epsilon() * (std::fabs(k.a) + std::fabs(k.b) + std::fabs(k.c) + std::fabs(h));
 }
 
@@ -92,7 +92,7 @@ S kepler_noise(const kepler_terms<S>& k, S h) {
 // / (2 r0), B = zeta0 u^2 / (6 r0), w = beta u^2 (Abramowitz & Stegun 1964,
 // eq. 3.6.25; docs/planetary.md).
 template <class S>
-S series_start(S u, S A, S B, S w) {
+[[gnu::always_inline]] inline S series_start(S u, S A, S B, S w) {
     const S AA = A * A;
     const S third = 2 * AA - B;
     // Products by the rounded 1/12 and 1/20: a division each would cost the
@@ -119,12 +119,12 @@ f_and_g<T> f_and_g_at(const R& r0, const E& eta0, const G& gm, const T& g1, cons
 // The same with 1/r0 and 1/r at hand (the short-drift lanes: products in
 // place of the divisions, the last bit not always the same).
 template <class T>
-f_and_g<T> f_and_g_by_reciprocals(T r0, T eta0, T gm, T g1, T g2, T per_r0, T per_r) {
+[[gnu::always_inline]] inline f_and_g<T> f_and_g_by_reciprocals(T r0, T eta0, T gm, T g1, T g2, T per_r0, T per_r) {
     return {-gm * g2 * per_r0, r0 * g1 + eta0 * g2, -gm * g1 * per_r * per_r0, -gm * g2 * per_r};
 }
 
 template <class T, class C>
-void apply_f_and_g(const f_and_g<C>& k, T& x, T& y, T& z, T& vx, T& vy, T& vz) {
+[[gnu::always_inline]] inline void apply_f_and_g(const f_and_g<C>& k, T& x, T& y, T& z, T& vx, T& vy, T& vz) {
     const T px = x + (k.fm1 * x + k.g * vx), py = y + (k.fm1 * y + k.g * vy), pz = z + (k.fm1 * z + k.g * vz);
     const T qx = vx + (k.fdot * x + k.gdm1 * vx), qy = vy + (k.fdot * y + k.gdm1 * vy),
             qz = vz + (k.fdot * z + k.gdm1 * vz);
@@ -157,7 +157,7 @@ struct small_shift {
 };
 
 template <class S>
-small_shift<S> small_shift_at(S beta, S d) {
+[[gnu::always_inline]] inline small_shift<S> small_shift_at(S beta, S d) {
     const S y = beta * d * d;
     return {1 - y * (S(1) / 2 - y * (S(1) / 24)), d * (1 - y * (S(1) / 6 - y * (S(1) / 120))),
             d * d * (S(1) / 2 - y * (S(1) / 24 - y * (S(1) / 720))),
@@ -188,7 +188,7 @@ kepler_residual<S> residual_shifted(const kepler_orbit<S>& o, const kepler_resid
 // step d1 (Abramowitz & Stegun 1964, eq. 3.6.25): one division, not three.
 // The series form, from d1, a2 d1 and a3 d1^2.
 template <class S>
-S quartic_series_step(S d1, S a2d, S a3dd) {
+[[gnu::always_inline]] inline S quartic_series_step(S d1, S a2d, S a3dd) {
     return d1 * (1 - a2d + (2 * a2d * a2d - a3dd));
 }
 

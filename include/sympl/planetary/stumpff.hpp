@@ -51,7 +51,7 @@ struct stumpff_values {
 // c0..c3 at y by n terms of the series (Horner: c2 = 1/2! - y/4! + ..., c3 =
 // 1/3! - y/5! + ...; c0 = 1 - y c2, c1 = 1 - y c3).
 template <class T>
-stumpff_values<T> stumpff_series(const T& y, int n) {
+[[gnu::always_inline]] inline stumpff_values<T> stumpff_series(const T& y, int n) {
     using S = primal_t<T>;
     T s2 = T(inverse_factorial<S>[std::size_t(2 * n)]), s3 = T(inverse_factorial<S>[std::size_t(2 * n + 1)]);
     for (int j = n - 2; j >= 0; --j) {
