@@ -74,6 +74,22 @@ void check_test_particles(const test_particle_set<S>& p, const std::string& who)
                                        " = " + number_text((*parts[std::size_t(c)])[i]) + "; expected a finite number");
     }
 }
+
+// Every particle (Q, v in q) drifted about gm over t one at a time, where
+// the lanes refused the batch: a particle at the star or gone non-finite is
+// made non-finite (for the caller to remove), the others drift.
+template <class S>
+void kepler_drift_one_by_one(std::array<std::vector<S>, 6>& q, S gm, S t) {
+    for (std::size_t i = 0; i < q[0].size(); ++i) {
+        S r[3] = {q[0][i], q[1][i], q[2][i]}, v[3] = {q[3][i], q[4][i], q[5][i]};
+        try {
+            kepler_drift_body(r, v, gm, t, std::ptrdiff_t(i));
+        } catch (const invalid_argument&) {
+            for (int c = 0; c < 3; ++c) r[c] = v[c] = std::numeric_limits<S>::quiet_NaN();
+        }
+        for (std::size_t c = 0; c < 3; ++c) q[c][i] = r[c], q[c + 3][i] = v[c];
+    }
+}
 }  // namespace detail
 
 // The flows of the Wisdom-Holman splitting on test particles, in the
@@ -130,17 +146,7 @@ public:
         try {
             fallbacks_ += kepler_drift_all<S>(b, gm0_, t);
         } catch (const invalid_argument&) {
-            // A particle at the star or gone non-finite: the others one by
-            // one, that one made non-finite (for the caller to remove).
-            for (std::size_t i = 0; i < size(); ++i) {
-                S r[3] = {q_[0][i], q_[1][i], q_[2][i]}, v[3] = {q_[3][i], q_[4][i], q_[5][i]};
-                try {
-                    detail::kepler_drift_body(r, v, gm0_, t, std::ptrdiff_t(i));
-                } catch (const invalid_argument&) {
-                    for (int c = 0; c < 3; ++c) r[c] = v[c] = std::numeric_limits<S>::quiet_NaN();
-                }
-                for (std::size_t c = 0; c < 3; ++c) q_[c][i] = r[c], q_[c + 3][i] = v[c];
-            }
+            detail::kepler_drift_one_by_one(q_, gm0_, t);
         }
     }
 
@@ -236,8 +242,7 @@ public:
                 std::array<std::vector<S>, 6>& particles) const {
         std::array<S, 3> shift{};
         if constexpr (!jacobi) {
-            for (std::size_t i = 0; i < p[0].size(); ++i)
-                for (std::size_t c = 0; c < 3; ++c) shift[c] += S(mass_[i + 1]) * p[c + 3][i];
+            shift = planets_momentum(p);
             for (auto& s : shift) s *= t / S(mass_[0]);
         }
         for (std::size_t c = 0; c < 3; ++c) {
@@ -278,15 +283,19 @@ private:
         return {origin, velocity};
     }
 
-    // The democratic heliocentric jump: Q += t sum_j m_j v_j / m_0, computed
-    // as the planets' jump computes it (DLL98 eq. 7).
+    // sum_j m_j v_j over the planets, summed as the planets' jump sums it:
+    // the democratic heliocentric jump moves every Q by t / m_0 times it (DLL98 eq. 7).
+    template <class Planets>
+    std::array<S, 3> planets_momentum(const Planets& p) const {
+        std::array<S, 3> sum{};
+        for (std::size_t i = 0; i < p[0].size(); ++i)
+            for (std::size_t c = 0; c < 3; ++c) sum[c] += S(mass_[i + 1]) * p[c + 3][i];
+        return sum;
+    }
+
     template <class Planets>
     void jump(const Planets& p, S t) {
-        S px(0), py(0), pz(0);
-        for (std::size_t i = 0; i < p[0].size(); ++i) {
-            const S m(mass_[i + 1]);
-            px += m * p[3][i], py += m * p[4][i], pz += m * p[5][i];
-        }
+        const auto [px, py, pz] = planets_momentum(p);
         const S s = t / S(mass_[0]);
         for (std::size_t i = 0; i < size(); ++i) q_[0][i] += s * px, q_[1][i] += s * py, q_[2][i] += s * pz;
     }
