@@ -131,20 +131,20 @@ struct run_context {
     Observer& observe;
     own_interpolation<State>* interpolation = nullptr;
 
-    // Any sympl stepper over the span; checkpointed when the request asks.
-    // Methods a checkpoint cannot resume were refused before (run_method reads
-    // their row); Resumable false, the row's answer for the kind (or a classic
-    // stepper's history), leaves the checkpointed driver uncompiled.
+    // Any sympl stepper over the span. Observed, a resumable method runs in
+    // the checkpointed driver whether or not the request asks for checkpoints
+    // (one driver compiled per stepper, not two; it saves none when not
+    // asked). Methods a checkpoint cannot resume were refused before
+    // (run_method reads their row); Resumable false, the row's answer for the
+    // kind (or a classic stepper's history), leaves that driver uncompiled.
     template <bool Resumable = true, class Stepper>
     steps_and_forces drive(Stepper stepper) const {
         run_summary s;
-        if constexpr (observed) {
-            if (rq.checkpoint.every_steps) {
-                if constexpr (Resumable)
-                    return checkpointed(*this, stepper);
-                else
-                    throw std::logic_error("method '" + m.name + "': a checkpointed run its row refuses reached the driver");
-            }
+        if constexpr (observed && Resumable) {
+            return checkpointed(*this, stepper);
+        } else if constexpr (observed) {
+            if (rq.checkpoint.every_steps)
+                throw std::logic_error("method '" + m.name + "': a checkpointed run its row refuses reached the driver");
             s = integrate_until(stepper, x, t0, t_end, rq.dt, observe);
         } else {
             s = integrate_until(stepper, x, t0, t_end, rq.dt);
@@ -201,7 +201,8 @@ public:
     // one is due, its carried list from `carried`.
     template <class State, class Carried>
     void after_step(const State& y, double t, Carried&& carried) {
-        if (++done_ % c_.rq.checkpoint.every_steps != 0 || t == c_.t_end) return;
+        const std::size_t every = c_.rq.checkpoint.every_steps;
+        if (every == 0 || ++done_ % every != 0 || t == c_.t_end) return;
         checkpoint_record record;
         record.step = done_;
         record.time = t;
@@ -232,10 +233,11 @@ private:
     std::size_t done_ = 0;
 };
 
-// The observed run with a checkpoint every rq.checkpoint.every_steps steps,
-// or its continuation from rq.checkpoint.resume: the driver resumes at the
-// checkpoint's step (times from the integer index), the stepper from what it
-// carried, so the rest of the run is bit for bit the uninterrupted one.
+// The observed run, with a checkpoint every rq.checkpoint.every_steps steps
+// (none when 0), or its continuation from rq.checkpoint.resume: the driver
+// resumes at the checkpoint's step (times from the integer index), the
+// stepper from what it carried, so the rest of the run is bit for bit the
+// uninterrupted one.
 template <class Context, class Stepper>
 steps_and_forces checkpointed(const Context& c, Stepper& stepper) {
     using State = typename Context::State;

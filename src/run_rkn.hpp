@@ -34,21 +34,21 @@ struct run_kind<method_kind::dprkn> {
         if (!adaptive(c.m)) return c.drive(std::move(stepper));
         control_options control;
         control.absolute_tolerance = control.relative_tolerance = c.rq.tolerance;
-        control_summary s;
         if constexpr (C::observed) {
             // Inside a step, the pair's own interpolation: the Hermite's is 1e5x the tolerance off here.
             if (c.interpolation)
                 *c.interpolation = [&stepper](double theta, typename C::State& out) { stepper.interpolate(theta, out); };
-            if (c.rq.checkpoint.every_steps) return checkpointed_control(c, stepper, control);
-            s = integrate_controlled(stepper, c.x, c.t0, c.t_end, control, c.observe);
+            return checkpointed_control(c, stepper, control);  // whether or not checkpoints are asked
         } else {
-            s = integrate_controlled(stepper, c.x, c.t0, c.t_end, control);
+            const control_summary s = integrate_controlled(stepper, c.x, c.t0, c.t_end, control);
+            return {s.accepted, s.force_evaluations};
         }
-        return {s.accepted, s.force_evaluations};
     }
 
-    // The record's carried list: the controller's state (time, next step,
-    // last error, the summary so far), then the pair's carried list.
+    // Every observed controlled run: with a checkpoint every
+    // rq.checkpoint.every_steps steps when that is not 0 (one driver compiled,
+    // not two). The record's carried list: the controller's state (time, next
+    // step, last error, the summary so far), then the pair's carried list.
     template <class C, class Stepper>
     static steps_and_forces checkpointed_control(const C& c, Stepper& stepper, const control_options& control) {
         controller_state<double> state;
