@@ -22,6 +22,9 @@
 //   sympl step()  the raw-pointer Hamiltonian, one step() call per step: each
 //                 call checks q against the q its kept force belongs to and
 //                 reuses that force (printed: step() loop / steps(n));
+//   hand per call (leapfrog) one hand-written step per call, the state and
+//                 the kept force in memory between calls, no checks: its ratio
+//                 to the hand loop is the floor of step()'s to steps(n);
 //   odeint        do_step per step, the momentum derivative calling the kernel.
 // Per-step cost with set-up cancelled: (time of 2n steps - time of n steps) / n,
 // in rounds that run every contender once (interleaved, so a slow spell of a
@@ -162,6 +165,22 @@ void hand_leapfrog(double* q_io, double* p_io, long n_runtime, double dt, long s
     });
 }
 
+// One leapfrog step per call, q, p and the last force in memory between
+// calls, as a loop of stepper.step() has them: the half kick and the drift
+// in one pass, the force, the second half kick; no checks. Its cost over
+// hand_leapfrog's is the floor for sympl's step() loop over steps(n).
+template <int N, class Force>
+[[gnu::noinline]] void hand_leapfrog_one_step(double* __restrict q, double* __restrict p, double* __restrict f,
+                                              long n_runtime, double dt, const Force& force) {
+    const long n = N > 0 ? N : n_runtime;
+    for (long i = 0; i < n; ++i) {
+        p[i] += 0.5 * dt * f[i];
+        q[i] += dt * p[i];
+    }
+    force(q, f);
+    for (long i = 0; i < n; ++i) p[i] += 0.5 * dt * f[i];
+}
+
 // Drift-first D d0 K k0 D d1 ... K k(K-1) D dK, K known at compile time.
 template <int N, int K, class Force>
 void hand_drift_first(double* q_io, double* p_io, long n_runtime, double dt, long steps,
@@ -280,9 +299,10 @@ void print(const char* problem, const char* scheme, std::vector<contender>& cs) 
     // "/ hand": over the hand loop of the same force style where there is one
     // (the 2-D problems), else over the raw-pointer hand loop.
     const auto eigen_style = [](const contender& c) { return c.name.find("Eigen") != std::string::npos; };
+    const auto per_call = [](const contender& c) { return c.name.find("per step") != std::string::npos; };
     double hand = 0, hand_eigen = 0, odeint_ns = 0;
     for (contender& c : cs) {
-        if (c.name.rfind("hand", 0) == 0) (eigen_style(c) ? hand_eigen : hand) = c.median();
+        if (c.name.rfind("hand", 0) == 0 && !per_call(c)) (eigen_style(c) ? hand_eigen : hand) = c.median();
         if (c.name.rfind("odeint", 0) == 0) odeint_ns = c.median();
     }
     std::printf("  %-52s %11s %9s %9s\n", "", "ns/step", "/ hand", "/ odeint");
@@ -292,12 +312,17 @@ void print(const char* problem, const char* scheme, std::vector<contender>& cs) 
                     c.median() / odeint_ns);
     }
     // The conventional loop against the library's own, raw-pointer force both (issue 37: within 1.15).
-    double steps_ns = 0, step_ns = 0;
+    // The hand loop's own ratio, one call per step against one loop, is that
+    // ratio's floor: the state crossing each call in memory.
+    double steps_ns = 0, step_ns = 0, hand_call_ns = 0;
     for (contender& c : cs) {
         if (c.name == "sympl raw-pointer force, steps(n)") steps_ns = c.median();
         if (c.name == "sympl raw-pointer force, step() per step") step_ns = c.median();
+        if (c.name == "hand leapfrog, one call per step") hand_call_ns = c.median();
     }
     if (steps_ns > 0) std::printf("  step() loop / steps(n): %.3f\n", step_ns / steps_ns);
+    if (hand_call_ns > 0 && hand > 0)
+        std::printf("  hand: one call per step / one loop: %.3f\n", hand_call_ns / hand);
     std::printf("\n");
 }
 
@@ -396,6 +421,14 @@ void run_problem(const char* problem, const Kernel& kernel, const std::vector<do
                           for (long i = 0; i < k; ++i) raw.step(x, dt);
                           return x.q[0];
                       }});
+        C f_kept = to_container(q0);  // the hand loop's force kept between calls
+        if (leapfrog)
+            cs.push_back({"hand leapfrog, one call per step", [&] { reset_arrays(); kernel(q.data(), f_kept.data()); },
+                          [&](long k) {
+                              for (long i = 0; i < k; ++i)
+                                  hand_leapfrog_one_step<N>(q.data(), p.data(), f_kept.data(), n, dt, kernel);
+                              return q[0];
+                          }});
         // odeint
         const auto dq = [](const C& pp, C& d) { d = pp; };
         const auto dp = [&](const C& qq, C& d) { kernel(qq.data(), d.data()); };
