@@ -144,7 +144,8 @@ struct run_context {
             return checkpointed(*this, stepper);
         } else if constexpr (observed) {
             if (rq.checkpoint.every_steps)
-                throw std::logic_error("method '" + m.name + "': a checkpointed run its row refuses reached the driver");
+                throw std::logic_error("method '" + m.name +
+                                       "': a checkpointed run its row refuses reached the driver");
             s = integrate_until(stepper, x, t0, t_end, rq.dt, observe);
         } else {
             s = integrate_until(stepper, x, t0, t_end, rq.dt);

@@ -69,8 +69,9 @@ struct kepler_terms {
 };
 
 template <class T, class R, class E, class Z, class B, class G, class H, class U>
-[[gnu::always_inline]] inline kepler_terms<T> kepler_equation(const R& r0, const E& eta0, const Z& zeta0, const B& beta, const G& gm, const H& h,
-                                const U& s, const stumpff_values<T>& c) {
+[[gnu::always_inline]] inline kepler_terms<T> kepler_equation(const R& r0, const E& eta0, const Z& zeta0, const B& beta,
+                                                              const G& gm, const H& h, const U& s,
+                                                              const stumpff_values<T>& c) {
     kepler_terms<T> k;
     const U ss = s * s;
     k.g1 = s * c.c1, k.g2 = ss * c.c2, k.g3 = ss * s * c.c3;
