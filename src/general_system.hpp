@@ -16,6 +16,7 @@ struct general_system {
     H h;
 
     template <class V>
+        requires general_hamiltonian<H, V>
     auto energy(const V& q, const V& p) const {
         return h.energy(q, p);
     }

@@ -17,6 +17,26 @@
 
 namespace sympl::app {
 
+namespace {
+// The methods compiled for a system's own type at its defaults, by kind label
+// (a classic stepper by its name where only some are): those it can run;
+// every other method runs on the generic path (generic_path.hpp).
+std::vector<std::string> compiled_names(const system_entry& s) {
+    const problem p = make_problem(s.name, {}, {}, {}, s.name);  // the form with the entry's own facts (V < 0)
+    std::vector<std::string> names;
+    for (const method_kind_entry& k : method_kinds()) {
+        if (!p.compiled.kinds.has(k.kind) || !why_not(k.requirement, p.form).empty()) continue;
+        if (k.kind != method_kind::classic || p.compiled.classic.bits == all_classic.bits) {
+            names.push_back(k.label);
+            continue;
+        }
+        for (std::size_t i = 0; i < classic_method_count; ++i)
+            if (p.compiled.classic.has(i)) names.push_back(classic_at(i).name);
+    }
+    return names;
+}
+}  // namespace
+
 // The registries: systems (with parameters) and method kinds.
 void print_systems(bool json) {
     if (json) {
@@ -29,6 +49,7 @@ void print_systems(bool json) {
             if (s.period.value) {
                 entry["period"] = {{"meaning", s.period.meaning}, {"default", period_of(s, with_defaults(s, {}, s.name))}};
             }
+            entry["compiled_kinds"] = compiled_names(s);
             out.push_back(entry);
         }
         std::cout << out.dump(2) << "\n";
@@ -43,6 +64,12 @@ void print_systems(bool json) {
         for (const auto& p : s.parameters)
             std::cout << "    " << std::left << std::setw(16) << p.name << std::setw(10) << format_number(p.value, 6)
                       << p.expected() << "; " << p.meaning << "\n";
+        const std::vector<std::string> compiled = compiled_names(s);
+        std::cout << "    compiled:";
+        for (const auto& name : compiled) std::cout << " " << name;
+        std::cout << (compiled.empty() ? " nothing" : "")
+                  << (s.build(with_defaults(s, {}, s.name)).hamiltonian ? "; any other method on the generic path\n"
+                                                                        : " (not Hamiltonian: no generic path)\n");
     }
     std::cout << "\nmethod kinds:\n";
     const auto line = [](const char* label, const char* description) {

@@ -9,10 +9,15 @@
 // classic_methods.
 #include <array>
 #include <cstddef>
+#include <cstdint>
+#include <initializer_list>
 #include <map>
 #include <optional>
 #include <span>
+#include <stdexcept>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <tuple>
 #include <vector>
 
@@ -32,6 +37,24 @@ enum class method_kind {
     table, processed, logh, classic, odeint, gauss, tao, semiexplicit, dprkn, wisdom_holman, charged,
 };
 inline constexpr std::size_t method_kind_count = std::size_t(method_kind::charged) + 1;
+
+// A set of method kinds, as a template argument: the kinds a system's
+// registry entry compiles for its own type (model.hpp, systems/*.cpp).
+struct kind_set {
+    std::uint32_t bits = 0;
+    constexpr kind_set() = default;
+    constexpr kind_set(std::initializer_list<method_kind> kinds) {
+        for (method_kind k : kinds) bits |= std::uint32_t(1) << unsigned(k);
+    }
+    constexpr bool has(method_kind k) const { return (bits >> unsigned(k)) & 1; }
+    constexpr kind_set operator|(kind_set o) const { return from_bits(bits | o.bits); }
+    static constexpr kind_set from_bits(std::uint32_t b) {
+        kind_set s;
+        s.bits = b;
+        return s;
+    }
+};
+inline constexpr kind_set all_kinds = kind_set::from_bits((std::uint32_t(1) << method_kind_count) - 1);
 
 enum class step_control { fixed, controlled };  // controlled: swept over tolerances instead of step sizes
 enum class odeint_stepper { rk4, dopri5, fehlberg78, bulirsch_stoer };
@@ -76,6 +99,11 @@ struct method_kind_entry {
     const char* extrapolated_not_resumable = "";  // why its extrapolated(...) methods cannot
     const char* history_not_resumable = "";       // why its steppers with a history (classic_methods) cannot
     const char* description = "";          // for listings and error messages (kinds named by a pattern)
+    // Runs on the generic path (generic_path.hpp) where a system's entry does
+    // not compile it: its steppers need no more of a Hamiltonian than the
+    // type-erased one offers (erased_system.hpp). Wisdom-Holman and the
+    // charged pushers need masses or fields, and stay compiled where they apply.
+    bool generic = false;
 };
 
 inline constexpr std::array odeint_members{
@@ -137,31 +165,31 @@ inline constexpr std::array<method_kind_entry, method_kind_count> method_kind_en
                     "Hamiltonian or, with exact damped drifts, on a damped, driven system; extrapolated(<symmetric "
                     "table>, k) extrapolates it over k runs of 1..k steps (order p + 2(k - 1)); compensated(<table>) sums "
                     "the updates with Kahan's compensation (both on separable Hamiltonians); a force-gradient table "
-                    "(chin_4a, ...) also needs the force's derivative"},
+                    "(chin_4a, ...) also needs the force's derivative", .generic = true},
     {.kind = method_kind::processed, .label = "processed", .requirement = needs::separable_hamiltonian,
      .symplectic = true,
      .description = "a processed method (blanes_2001_p6, ...): a kernel every step, its processor only where the state is "
-                    "looked at; every output is the true state"},
+                    "looked at; every output is the true state", .generic = true},
     {.kind = method_kind::logh, .label = "logh", .fictitious_time = true, .requirement = needs::negative_potential,
      .symplectic = true,
      .description = "logh(<table>): the table in LogH fictitious time (Mikkola & Tanikawa 1999); dt is the fictitious "
-                    "step; extrapolated(logh(<symmetric table>), k) as above"},
+                    "step; extrapolated(logh(<symmetric table>), k) as above", .generic = true},
     {.kind = method_kind::classic, .label = "classic",
-     .description = "a classic stepper of Gould & Tobochnik or Sandvik"},
-    {.kind = method_kind::odeint, .label = "odeint", .members = odeint_members, .odeint = true},
+     .description = "a classic stepper of Gould & Tobochnik or Sandvik", .generic = true},
+    {.kind = method_kind::odeint, .label = "odeint", .members = odeint_members, .odeint = true, .generic = true},
     {.kind = method_kind::gauss, .label = "gauss", .members = gauss_members, .requirement = needs::general_hamiltonian,
-     .symplectic = true},
+     .symplectic = true, .generic = true},
     {.kind = method_kind::tao, .label = "tao", .requirement = needs::general_hamiltonian, .symplectic = true,
      .description = "tao(<table>[, omega = W]): Tao's explicit method for any H(q, p) (extended phase space; the "
                     "binding omega unless given 4 times the fastest frequency at the start, in each component's units), "
                     "composed by a symmetric composition of leapfrog steps (leapfrog_kdk, yoshida_4, yoshida_6, ...); "
-                    "symplectic in the extended space only"},
+                    "symplectic in the extended space only", .generic = true},
     {.kind = method_kind::semiexplicit, .label = "semiexplicit", .requirement = needs::general_hamiltonian,
      .symplectic = true,
      .description = "semiexplicit(<table>): Jayawardana & Ohsawa's semiexplicit method for any H(q, p), composed "
-                    "by a symmetric composition of leapfrog steps; symplectic and symmetric"},
+                    "by a symmetric composition of leapfrog steps; symplectic and symmetric", .generic = true},
     {.kind = method_kind::dprkn, .label = "rkn_nonsymplectic", .members = dprkn_members,
-     .requirement = needs::quadratic_kinetic},
+     .requirement = needs::quadratic_kinetic, .generic = true},
     {.kind = method_kind::wisdom_holman, .label = "wisdom_holman", .requirement = needs::planetary, .symplectic = true,
      .description = "wh(<table>[, corrector = K][, kernel = composition|lazy][, coordinates = jacobi]): "
                     "Wisdom-Holman splitting of a planetary system, the table's drifts the exact Kepler flow about "
@@ -186,6 +214,14 @@ const std::array<method_kind_entry, method_kind_count>& method_kinds();
 // answer before any parameter, which decides whether the checkpointed driver
 // is compiled for the kind (run_kinds.hpp).
 constexpr bool kind_may_resume(method_kind kind) { return *entry_of(kind).not_resumable == '\0'; }
+
+// The kinds the generic path runs (their rows' `generic`).
+constexpr kind_set generic_kinds() {
+    kind_set s;
+    for (const method_kind_entry& e : method_kind_entries)
+        if (e.generic) s = s | kind_set{e.kind};
+    return s;
+}
 
 // A classic stepper of classic_steppers.hpp under its scene name.
 template <template <class, class> class Stepper, needs Needs>
@@ -223,6 +259,41 @@ inline constexpr std::tuple classic_methods{
                                                     "predictor-corrector (Gould & Tobochnik eqs. 3.69-3.70)", true},
 };
 inline constexpr std::size_t classic_method_count = std::tuple_size_v<decltype(classic_methods)>;
+
+// Classic steppers by index in classic_methods, as a template argument: those
+// a system's registry entry compiles for its own type, named as in scenes
+// (an unknown name does not compile).
+struct classic_set {
+    std::uint32_t bits = 0;
+    constexpr classic_set() = default;
+    constexpr classic_set(std::initializer_list<std::string_view> names) {
+        for (std::string_view name : names) bits |= std::uint32_t(1) << index_of(name);
+    }
+    constexpr bool has(std::size_t index) const { return (bits >> index) & 1; }
+    static constexpr std::size_t index_of(std::string_view name) {
+        std::size_t found = classic_method_count;
+        [&]<std::size_t... I>(std::index_sequence<I...>) {
+            ((std::string_view(std::get<I>(classic_methods).name) == name ? void(found = I) : void()), ...);
+        }(std::make_index_sequence<classic_method_count>{});
+        if (found == classic_method_count) throw std::invalid_argument("not a classic stepper's name");
+        return found;
+    }
+};
+inline constexpr classic_set all_classic = [] {
+    classic_set s;
+    s.bits = (std::uint32_t(1) << classic_method_count) - 1;
+    return s;
+}();
+
+// The methods compiled for a system's own type: its kinds and, of the classic
+// kind, its steppers (model.hpp).
+struct compiled_methods {
+    kind_set kinds = all_kinds;
+    classic_set classic = all_classic;
+    constexpr bool has(const method_kind kind, std::size_t classic_index) const {
+        return kinds.has(kind) && (kind != method_kind::classic || classic.has(classic_index));
+    }
+};
 
 // What any classic method is, by index, without its stepper type.
 struct classic_facts {

@@ -2,15 +2,20 @@
 // model(): a system of hamiltonians/ as the program's type-erased problem.
 // Its run() takes any method kind (run_kinds.hpp) over a span: the observed
 // run (energy, trajectory, blow-up, checkpoints), then the timed runs with
-// nothing observed. Included by the systems' translation units only
-// (systems/*.cpp), each instantiating one system.
+// nothing observed; the methods its registry entry compiles for its own type
+// run there, any other on the generic path (generic_path.hpp). Included by
+// the systems' translation units (systems/*.cpp), each instantiating one
+// system, and by the generic path's.
 #include <algorithm>
 #include <cmath>
 #include <functional>
 #include <utility>
 
+#include "erased_system.hpp"
 #include "general_system.hpp"
+#include "generic_path.hpp"
 #include "run_kinds.hpp"
+#include "problem_parts.hpp"
 #include "timing.hpp"
 
 namespace sympl::app {
@@ -95,16 +100,19 @@ private:
     bool started_ = false;
 };
 
-template <class Sys, int Dim>
+// The runs of one system type: the methods in Own compiled for it, any other
+// handed to `generic` (the generic path, generic_path.hpp).
+template <class Sys, int Dim, compiled_methods Own = compiled_methods{}>
 class runner {
 public:
     using State = state_of<Dim>;
 
-    runner(Sys sys, std::function<double(const std::vector<double>&)> energy)
-        : sys_(std::move(sys)), energy_(std::move(energy)) {}
+    runner(Sys sys, std::function<double(const std::vector<double>&)> energy, run_function generic = nullptr)
+        : sys_(std::move(sys)), energy_(std::move(energy)), generic_(std::move(generic)) {}
 
     run_result operator()(const method_spec& m, const run_request& rq, double t0, double t_end,
                           const std::vector<double>& x0) const {
+        if (!Own.has(m.kind, m.classic) && generic_) return generic_(m, rq, t0, t_end, x0);
         run_result r;
         if (rq.observed) {
             observed_run(m, rq, t0, t_end, x0, r);
@@ -114,7 +122,7 @@ public:
             [&] {
                 State y = to_state<Dim>(x0);
                 no_observer nothing;
-                run_method(run_context<Sys, Dim, no_observer>{sys_, m, rq, t0, t_end, y, nothing});
+                run_method(run_context<Sys, Dim, no_observer, Own>{sys_, m, rq, t0, t_end, y, nothing});
             },
             rq.timing_repeats, rq.min_measurement);
         r.seconds = t.median;
@@ -187,8 +195,8 @@ private:
         State x = to_state<Dim>(x0);
         try {
             const auto [steps, forces] =
-                run_method(run_context<Sys, Dim, decltype(observe)>{sys_, m, with_checkpoints, t0, t_end, x, observe,
-                                                                    timed ? rows.interpolation() : nullptr});
+                run_method(run_context<Sys, Dim, decltype(observe), Own>{
+                    sys_, m, with_checkpoints, t0, t_end, x, observe, timed ? rows.interpolation() : nullptr});
             r.steps = steps;
             r.force_evaluations = forces;
             r.final_state = to_vector(x);
@@ -210,76 +218,21 @@ private:
 
     Sys sys_;
     std::function<double(const std::vector<double>&)> energy_;
+    run_function generic_;
 };
 
-// What only a separable Hamiltonian offers the program: its energy, a
-// long-double reference, ensembles and Poincare sections.
-template <int Dim, class Sys>
-void add_hamiltonian_parts(problem& p, const Sys& sys) {
-    using S = state_of<Dim>;
-    p.energy = [sys](const std::vector<double>& x) { return energy(sys, from_stacked<phase_space<double>>(x)); };
-    p.reference_method = "sofroniou_spaletta_10, long double";
-    p.reference = [sys](double t0, double t_end, double dt, const std::vector<double>& x) {
-        using L = phase_space<long double>;
-        L y = from_stacked<L>(x);
-        splitting_stepper<Sys, L> ss(sys, method("sofroniou_spaletta_10"));
-        integrate_until(ss, y, (long double)t0, (long double)t_end, (long double)dt);
-        return to_vector(y);
-    };
-    p.ensemble = [sys](const ensemble_request& rq, const std::vector<std::vector<double>>& starts) {
-        std::vector<S> states;
-        states.reserve(starts.size());
-        for (const auto& x : starts) states.push_back(from_stacked<S>(x));
-        const ensemble_options o{.t0 = rq.t0, .dt = rq.dt, .steps = rq.steps, .sample_every = rq.sample_every,
-                                 .divergence = rq.divergence, .megno = rq.megno, .threads = rq.threads};
-        std::vector<ensemble_row> rows;
-        rows.reserve(starts.size());
-        for (const auto& r : run_ensemble(sys, *rq.method, states, o))
-            rows.push_back({r.stable, r.blowup_step, r.blowup_time, r.failure, r.max_energy_error, r.megno,
-                            to_vector(r.final_state)});
-        return rows;
-    };
-    p.section = [sys](const table& m, double dt, std::size_t steps, const std::vector<double>& x0) {
-        splitting_stepper<Sys, S> stepper(sys, m);
-        std::vector<std::vector<double>> points;
-        for (const S& c : section_crossings(stepper, from_stacked<S>(x0), dt, steps)) points.push_back(to_vector(c));
-        return points;
+// The generic path's runner over a type-erased system (generic_path.cpp):
+// every kind it can run, its results marked wherever they are read.
+template <class Sys>
+run_function generic_runner(Sys sys, std::function<double(const std::vector<double>&)> energy) {
+    using every_generic_kind = runner<Sys, Eigen::Dynamic, compiled_methods{.kinds = generic_kinds()}>;
+    return [r = every_generic_kind(std::move(sys), std::move(energy))](
+               const method_spec& m, const run_request& rq, double t0, double t_end, const std::vector<double>& x0) {
+        run_result out = r(m, rq, t0, t_end, x0);
+        out.generic = true;
+        return out;
     };
 }
-
-// What a general H(q, p) offers the program: its energy and a long-double
-// reference by Gauss-Legendre of order 6 (symplectic for any H; no ensembles
-// or sections, which run splitting tables).
-template <class Sys>
-void add_general_parts(problem& p, const Sys& sys) {
-    p.energy = [sys](const std::vector<double>& x) { return energy(sys, from_stacked<phase_space<double>>(x)); };
-    p.reference_method = "gauss_6, long double";
-    p.reference = [sys](double t0, double t_end, double dt, const std::vector<double>& x) {
-        using L = phase_space<long double>;
-        L y = from_stacked<L>(x);
-        gauss_collocation_stepper<Sys, L> gauss(sys, 3);
-        integrate_until(gauss, y, (long double)t0, (long double)t_end, (long double)dt);
-        return to_vector(y);
-    };
-}
-
-// Equations of motion only: an RK4 reference in double.
-template <class Sys>
-void add_equations_parts(problem& p, const Sys& sys) {
-    p.reference_method = "rk4";
-    p.reference = [sys](double t0, double t_end, double dt, const std::vector<double>& x) {
-        using State = phase_space<double>;
-        State y = from_stacked<State>(x);
-        auto s4 = make_classic<rk4, State>(sys);
-        integrate_until(s4, y, t0, t_end, dt);
-        return to_vector(y);
-    };
-}
-
-template <class Sys>
-inline constexpr bool is_general_system = false;
-template <class H>
-inline constexpr bool is_general_system<general_system<H>> = true;
 
 }  // namespace detail
 
@@ -292,15 +245,60 @@ std::function<std::vector<double>(double)> exact_flow(H h, X x0) {
     return [h, x0](double t) { return detail::to_vector(h.exact(x0, t)); };
 }
 
+// What a system's registry entry compiles for its own type (model's template
+// argument): the method kinds its built-in scenes run, or of the classic kind
+// only the steppers they name (tests/program/test_generic_path.cpp holds
+// every entry to that), and ensembles and Poincare sections where a built-in
+// scene maps the system. Everything else runs on the generic path
+// (generic_path.hpp), marked as such.
+struct compiled {
+    kind_set kinds{};
+    classic_set classic{};  // with kinds holding `classic`: all of them
+    bool ensembles = false;
+};
+
+namespace detail {
+// The methods compiled for Sys: those its entry names, and the kinds the
+// generic path cannot run (Wisdom-Holman, the charged pushers: they need more
+// than a Hamiltonian). A system that is no Hamiltonian (damped, driven) has
+// no generic path: every method it meets is compiled.
+template <class Sys>
+constexpr compiled_methods compiled_for(compiled named) {
+    using V = phase_space<double>::vector;
+    if constexpr (separable_hamiltonian<Sys, V> || is_general_system<Sys>) {
+        compiled_methods c;
+        c.kinds = named.kinds | kind_set::from_bits(all_kinds.bits & ~generic_kinds().bits);
+        if (named.kinds.has(method_kind::classic)) {
+            c.classic = all_classic;
+        } else if (named.classic.bits != 0) {
+            c.kinds = c.kinds | kind_set{method_kind::classic};
+            c.classic = named.classic;
+        }
+        return c;
+    } else {
+        return compiled_methods{};
+    }
+}
+
+// Whether Sys meets the requirement of some kind in Own: whether a runner of
+// its own has anything to run.
+template <class Sys, compiled_methods Own>
+constexpr bool runs_any() {
+    return []<std::size_t... K>(std::index_sequence<K...>) {
+        return ((Own.kinds.has(method_kind(K)) && meets<entry_of(method_kind(K)).requirement, Sys>()) || ...);
+    }(std::make_index_sequence<method_kind_count>{});
+}
+}  // namespace detail
+
 // A system of hamiltonians/ as the program's problem: its default state x0
 // and, when it has one, its exact solution from x0.
 // Dim: the degrees of freedom when fixed (small systems), Eigen::Dynamic otherwise.
 // A general H(q, p) that does not split runs as general_system<H>.
-template <int Dim = Eigen::Dynamic, class Sys>
+template <int Dim = Eigen::Dynamic, compiled Own = compiled{.kinds = all_kinds, .ensembles = true}, class Sys>
 problem model(Sys sys, std::vector<double> x0, std::function<std::vector<double>(double)> exact = nullptr) {
     using V = phase_space<double>::vector;
     if constexpr (general_hamiltonian<Sys, V> && !separable_hamiltonian<Sys, V> && !detail::is_general_system<Sys>) {
-        return model<Dim>(general_system<Sys>{std::move(sys)}, std::move(x0), std::move(exact));
+        return model<Dim, Own>(general_system<Sys>{std::move(sys)}, std::move(x0), std::move(exact));
     } else {
         if (Dim != Eigen::Dynamic && x0.size() != std::size_t(2 * Dim))
             throw invalid_argument("model: a state of " + std::to_string(x0.size()) + " numbers for " +
@@ -315,13 +313,32 @@ problem model(Sys sys, std::vector<double> x0, std::function<std::vector<double>
             for (const auto& m : sys.mass) p.masses.push_back(double(m));
             p.G = double(sys.G);
         }
-        if constexpr (separable_hamiltonian<Sys, V>)
-            detail::add_hamiltonian_parts<Dim>(p, sys);
-        else if constexpr (general_hamiltonian<Sys, V>)
-            detail::add_general_parts(p, sys);
+        constexpr compiled_methods methods = detail::compiled_for<Sys>(Own);
+        p.compiled = methods;
+        run_function generic;
+        if constexpr (separable_hamiltonian<Sys, V> || detail::is_general_system<Sys>) {
+            p.energy = [sys](const std::vector<double>& x) {
+                return energy(sys, from_stacked<phase_space<double>>(x));
+            };
+            detail::generic_parts g = detail::generic_parts_of(sys, p.energy);
+            p.reference_method = g.reference_method;
+            p.reference = std::move(g.reference);
+            if constexpr (separable_hamiltonian<Sys, V> && Own.ensembles) {
+                p.ensemble = detail::ensemble_of<Dim, native_double_width>(sys);
+                p.section = detail::section_of<Dim>(sys);
+            } else {
+                p.ensemble = std::move(g.ensemble);
+                p.section = std::move(g.section);
+            }
+            generic = std::move(g.run);
+        } else {
+            p.reference_method = "rk4";
+            p.reference = detail::reference_by_rk4(sys);
+        }
+        if constexpr (detail::runs_any<Sys, methods>())
+            p.run = detail::runner<Sys, Dim, methods>(sys, p.energy, std::move(generic));
         else
-            detail::add_equations_parts(p, sys);
-        p.run = detail::runner<Sys, Dim>(sys, p.energy);
+            p.run = std::move(generic);
         return p;
     }
 }

@@ -65,7 +65,14 @@ struct run_result {
     double max_energy_error = -1;   // -1: not measured (or no energy: not Hamiltonian)
     std::vector<double> final_state;
     std::vector<std::pair<double, double>> energy_series;
+    // Ran on the generic path (generic_path.hpp): a kind the system's registry
+    // entry does not compile, through the type-erased system; outputs mark it.
+    bool generic = false;
 };
+
+// A method's run over [t0, t_end] from x0 (model.hpp).
+using run_function = std::function<run_result(const method_spec&, const run_request&, double t0, double t_end,
+                                              const std::vector<double>& x0)>;
 
 // An ensemble of one system (ensemble.hpp): one table, one dt, many starts.
 struct ensemble_request {
@@ -88,6 +95,13 @@ struct ensemble_row {
     std::vector<double> final_state;  // q then p
 };
 
+using ensemble_function =
+    std::function<std::vector<ensemble_row>(const ensemble_request&, const std::vector<std::vector<double>>& starts)>;
+using section_function = std::function<std::vector<std::vector<double>>(const table&, double dt, std::size_t steps,
+                                                                        const std::vector<double>& x0)>;
+using reference_function =
+    std::function<std::vector<double>(double t0, double t_end, double dt, const std::vector<double>& x0)>;
+
 struct problem {
     std::string system;
     bool hamiltonian = true;  // has an energy to watch
@@ -102,20 +116,19 @@ struct problem {
     std::vector<double> masses;
     double G = 0;
     std::function<double(const std::vector<double>&)> energy;  // empty when not Hamiltonian
-    std::function<run_result(const method_spec&, const run_request&, double t0, double t_end,
-                             const std::vector<double>& x0)>
-        run;
+    run_function run;
+    // The kinds compiled for the system's own type (its registry entry's,
+    // model.hpp); the others run on the generic path.
+    compiled_methods compiled;
     // The ensemble runner (separable Hamiltonians only; empty otherwise).
-    std::function<std::vector<ensemble_row>(const ensemble_request&, const std::vector<std::vector<double>>& starts)>
-        ensemble;
+    ensemble_function ensemble;
     // Upward crossings of q1 = 0 (a Poincare section) of `steps` steps of dt
     // from x0, as stacked states (separable Hamiltonians only).
-    std::function<std::vector<std::vector<double>>(const table&, double dt, std::size_t steps, const std::vector<double>& x0)>
-        section;
+    section_function section;
     // A reference at t_end with step dt: Sofroniou-Spaletta 10 in long double
     // (a separable H), Gauss-Legendre 6 in long double (any other H), RK4.
     std::string reference_method;  // which, as the report names it
-    std::function<std::vector<double>(double t0, double t_end, double dt, const std::vector<double>& x0)> reference;
+    reference_function reference;
 };
 
 // max_i |a_i - b_i| / max_i |b_i|

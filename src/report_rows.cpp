@@ -23,7 +23,8 @@ std::string row_record(std::size_t index, const report_row& r) {
     std::string t = std::to_string(index);
     const auto number = [&](double v) { t += ' ' + shortest(v); };
     const run_result& m = r.r;
-    t += ' ' + std::to_string(int(m.stable)) + ' ' + std::to_string(m.blowup_step);
+    t += ' ' + std::to_string(int(m.stable)) + ' ' + std::to_string(int(m.generic)) + ' ' +
+         std::to_string(m.blowup_step);
     number(m.blowup_time);
     t += ' ' + std::to_string(m.steps) + ' ' + std::to_string(m.force_evaluations);
     number(m.max_energy_error);
@@ -61,6 +62,7 @@ void read_row_records(const std::string& block, std::vector<report_row>& rows) {
         report_row& r = rows.at(count(rows.size() - 1));
         run_result& m = r.r;
         m.stable = count(1) == 1;
+        m.generic = count(1) == 1;
         word(m.blowup_step);
         word(m.blowup_time);
         word(m.steps);

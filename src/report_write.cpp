@@ -72,7 +72,7 @@ void write_work_precision_csv(const std::vector<report_row>& rows,
     atomic_file csv(dir / "work_precision.csv");
     csv.stream() << csv_line({"scene", "method", "kind", "dt", "tolerance", "status", "blowup_step", "blowup_time", "steps",
                               "force_evaluations", "seconds", "seconds_min", "seconds_max", "max_energy_error",
-                              "final_error", "reference_error", "loop_area_error"});
+                              "final_error", "reference_error", "loop_area_error", "path"});
     for (const report_row& r : rows) {
         const bool ok = r.r.stable;
         const planned_run& p = *r.run;
@@ -83,7 +83,8 @@ void write_work_precision_csv(const std::vector<report_row>& rows,
                                   ok ? std::to_string(r.r.force_evaluations) : "", ok ? csv_number(r.r.seconds) : "",
                                   ok ? csv_number(r.r.seconds_min) : "", ok ? csv_number(r.r.seconds_max) : "",
                                   ok ? csv_number(r.r.max_energy_error) : "", ok ? csv_number(r.final_error) : "",
-                                  csv_number(references.at(r.s).error), ok ? csv_number(r.loop_area_error) : ""});
+                                  csv_number(references.at(r.s).error), ok ? csv_number(r.loop_area_error) : "",
+                                  r.r.generic ? "generic" : "compiled"});
     }
     csv.commit();
 }

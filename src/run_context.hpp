@@ -116,11 +116,14 @@ using own_interpolation = std::function<void(double theta, State& out)>;
 // every step when the run is observed (Observer is not no_observer), and,
 // when the observer reads states between steps, where a kind whose stepper
 // interpolates its own steps puts that interpolation.
-template <class Sys, int Dim, class Observer>
+// Own: the methods compiled for Sys (its registry entry's, model.hpp);
+// run_method reaches no other.
+template <class Sys, int Dim, class Observer, compiled_methods Own = compiled_methods{}>
 struct run_context {
     using system = Sys;
     using State = state_of<Dim>;
     static constexpr int dimension = Dim;
+    static constexpr compiled_methods own = Own;
     static constexpr bool observed = !std::is_same_v<Observer, no_observer>;
 
     const Sys& sys;

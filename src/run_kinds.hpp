@@ -8,6 +8,7 @@
 // run_odeint.hpp, those for any H(q, p) in run_general.hpp, the RKN pairs in
 // run_rkn.hpp, what all kinds share in run_context.hpp.
 #include <cstddef>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -110,9 +111,18 @@ struct run_kind<method_kind::classic> {
     static steps_and_forces run(const C& c) {
         return [&]<std::size_t... I>(std::index_sequence<I...>) {
             steps_and_forces done{};
-            ((c.m.classic == I ? void(done = one<I>(c)) : void()), ...);
+            ((c.m.classic == I ? void(done = one_compiled<I>(c)) : void()), ...);
             return done;
         }(std::make_index_sequence<classic_method_count>{});
+    }
+
+    template <std::size_t I, class C>
+    static steps_and_forces one_compiled(const C& c) {
+        if constexpr (C::own.classic.has(I))
+            return one<I>(c);
+        else
+            throw std::logic_error("method '" + c.m.name +
+                                   "': a classic stepper not compiled for the system reached its runner");
     }
 
     template <std::size_t I, class C>
@@ -142,7 +152,9 @@ bool meets_at_run_time(needs n) {
 // checked before.
 template <method_kind K, class C>
 steps_and_forces run_where_met(const C& c) {
-    if constexpr (meets<entry_of(K).requirement, typename C::system>())
+    if constexpr (!C::own.kinds.has(K))
+        throw std::logic_error("method '" + c.m.name + "': a kind not compiled for the system reached its runner");
+    else if constexpr (meets<entry_of(K).requirement, typename C::system>())
         return run_kind<K>::run(kind_context<K, C>{c});
     else
         refuse<typename C::system>(c.m.name, entry_of(K).requirement);

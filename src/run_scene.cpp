@@ -60,6 +60,7 @@ nlohmann::json as_json(const scene& s, const outcome& o, const reference_state& 
     j["reference"] = ref.kind;
     if (!ref.failure.empty()) j["reference_failure"] = ref.failure;
     j["seconds"] = std::max(r.seconds, 0.0);
+    j["path"] = r.generic ? "generic" : "compiled";  // generic_path.hpp
     if (s.output.final_state && r.stable) j["final_state"] = r.final_state;
     return j;
 }
@@ -79,6 +80,7 @@ std::string as_text(const scene& s, const outcome& o) {
       << (o.final_error >= 0 ? format_number(o.final_error, 3) : "-") << "   "
       << (r.seconds >= 0 ? format_number(r.seconds * 1e3, 3) + " ms" : std::string("(not timed)"));
     if (o.loop_area_error >= 0) l << "   loop area error " << format_number(o.loop_area_error, 3);
+    if (r.generic) l << "   (generic path: not compiled for this system)";
     if (error_order_one(o))
         l << "\n    ^ ERROR OF ORDER ONE (>= " << format_number(order_one_error) << "): no correct digit, not a result; "
           << "a smaller dt";

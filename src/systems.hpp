@@ -6,8 +6,9 @@
 // messages all read it. Adding a system is its header in hamiltonians/, one
 // file systems/<name>.cpp with its entry (written with designated
 // initializers), and its line in systems/list.hpp. Each entry is a
-// translation unit of its own: it instantiates every method kind for its
-// system, and the files build in parallel.
+// translation unit of its own: it compiles for its system's type the methods
+// its `compiled` names (model.hpp), and the files build in parallel; every
+// other method runs on the generic path (generic_path.hpp).
 #include <cmath>
 #include <functional>
 #include <limits>

@@ -16,7 +16,9 @@ system_entry charged_particle_entry() {
                        positive("field_length", 1, "L, where B_z doubles"),
                        nonnegative("confinement", 0, "k of the electrostatic well e phi = (k/2)|q|^2")},
         .build = [](const parameter_values& v) {
-            return model<2>(hamiltonians::charged_particle{v.at("mass"), v.at("charge"), v.at("field"),
+            using enum method_kind;
+            constexpr compiled own{.kinds = {gauss, tao, semiexplicit, odeint, charged}};
+            return model<2, own>(hamiltonians::charged_particle{v.at("mass"), v.at("charge"), v.at("field"),
                                                            v.at("field_length"), v.at("confinement")},
                             {1.0, 0.0, 0.4, 1.0});
         },

@@ -15,10 +15,12 @@ system_entry damped_oscillator_entry() {
                        any("drive_amplitude", 0, "F0"), nonnegative("drive_frequency", 0, "Omega")},
         .exact = true,
         .build = [](const parameter_values& v) {
+            using enum method_kind;
+            constexpr compiled own{.kinds = {table, classic, odeint}};
             const hamiltonians::damped_driven_oscillator o{v.at("mass"), v.at("stiffness"), v.at("damping"),
                                                            v.at("drive_amplitude"), v.at("drive_frequency")};
             const phase_space<double, 1> x0(one_dof(1.0), one_dof(0.0));
-            return model<1>(o, stacked(x0), exact_flow(o, x0));
+            return model<1, own>(o, stacked(x0), exact_flow(o, x0));
         },
         .period = {"undamped period 2 pi sqrt(m / k)",
                    [](const parameter_values& v) {

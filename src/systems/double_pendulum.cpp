@@ -15,7 +15,9 @@ system_entry double_pendulum_entry() {
         .parameters = {positive("mass1", 1, "m1"), positive("mass2", 1, "m2"), positive("length1", 1, "l1"),
                        positive("length2", 1, "l2"), positive("gravity", 1, "g")},
         .build = [](const parameter_values& v) {
-            return model<2>(hamiltonians::double_pendulum{v.at("mass1"), v.at("mass2"), v.at("length1"),
+            using enum method_kind;
+            constexpr compiled own{.kinds = {gauss, tao, semiexplicit, odeint}};
+            return model<2, own>(hamiltonians::double_pendulum{v.at("mass1"), v.at("mass2"), v.at("length1"),
                                                           v.at("length2"), v.at("gravity")},
                             {1.0, 0.5, 0.2, -0.1});
         },

@@ -13,9 +13,11 @@ system_entry harmonic_oscillator_entry() {
         .parameters = {positive("mass", 1, "m"), positive("omega", 1, "angular frequency")},
         .exact = true,
         .build = [](const parameter_values& v) {
+            using enum method_kind;
+            constexpr compiled own{.kinds = {table, dprkn, odeint}, .classic = {"rk4"}};
             const hamiltonians::harmonic_oscillator h{v.at("mass"), v.at("omega")};
             const phase_space<double, 1> x0(one_dof(1.0), one_dof(0.0));
-            return model<1>(h, stacked(x0), exact_flow(h, x0));
+            return model<1, own>(h, stacked(x0), exact_flow(h, x0));
         },
         .period = {"period 2 pi / omega",
                    [](const parameter_values& v) { return two_pi / v.at("omega"); }},

@@ -14,7 +14,9 @@ system_entry henon_heiles_entry() {
                                          .meaning = "H; bounded motion up to 1/6"}),
                        of_initial_state(any("q2", 0.1, "starting q2")), of_initial_state(any("p2", 0, "starting p2"))},
         .build = [](const parameter_values& v) {
-            return model<2>(hamiltonians::henon_heiles{},
+            using enum method_kind;
+            constexpr compiled own{.kinds = {table, dprkn, odeint}, .classic = {"rk4"}, .ensembles = true};
+            return model<2, own>(hamiltonians::henon_heiles{},
                             stacked(hamiltonians::henon_heiles::initial_state(v.at("energy"), v.at("q2"), v.at("p2"))));
         },
         .period = {"small-oscillation period 2 pi (H = |p|^2/2 + |q|^2/2 + cubic)",

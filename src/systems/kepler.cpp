@@ -20,6 +20,8 @@ system_entry kepler_entry() {
                                 "length unit L: q -> L q, p -> L p, mu -> mu L^3 (the same orbit in other units)")},
         .exact = true,
         .build = [](const parameter_values& v) {
+            using enum method_kind;
+            constexpr compiled own{.kinds = {table, logh, dprkn, odeint}, .classic = {"rk4"}};
             const double e = v.at("eccentricity"), L = v.at("scale"), mu = v.at("mu");
             if (mu != 1 && L != 1)
                 throw invalid_argument("kepler: mu = " + shortest(mu) + " and scale = " + shortest(L) +
@@ -30,8 +32,8 @@ system_entry kepler_entry() {
             };
             std::function<std::vector<double>(double)> exact;
             if (mu == 1) exact = [e, scaled](double t) { return scaled(stacked(hamiltonians::kepler::exact_state(e, t))); };
-            return model<2>(hamiltonians::kepler{mu * L * L * L}, scaled(stacked(hamiltonians::kepler::initial_state(e))),
-                            exact);
+            return model<2, own>(hamiltonians::kepler{mu * L * L * L},
+                                 scaled(stacked(hamiltonians::kepler::initial_state(e))), exact);
         },
         .negative_potential = true,
         // The pericentre start of unit speed sqrt((1+e)/(1-e)) has a = mu (1-e) / (2 mu - 1 - e) (vis-viva):

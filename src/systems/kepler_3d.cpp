@@ -17,8 +17,9 @@ system_entry kepler_3d_entry() {
                        of_initial_state(any("periapsis", 0.7, "argument of pericentre, rad"))},
         .exact = true,
         .build = [](const parameter_values& v) {
+            constexpr compiled own{};  // no built-in scene: every method on the generic path
             const double e = v.at("eccentricity"), i = v.at("inclination"), o = v.at("node"), w = v.at("periapsis");
-            return model<3>(hamiltonians::kepler{}, stacked(hamiltonians::kepler::initial_state_3d(e, i, o, w)),
+            return model<3, own>(hamiltonians::kepler{}, stacked(hamiltonians::kepler::initial_state_3d(e, i, o, w)),
                             [=](double t) { return stacked(hamiltonians::kepler::exact_state_3d(e, i, o, w, t)); });
         },
         .negative_potential = true,

@@ -14,10 +14,11 @@ system_entry morse_entry() {
                        any("position", 0, "r0, the minimum")},
         .exact = true,
         .build = [](const parameter_values& v) {
+            constexpr compiled own{};  // no built-in scene: every method on the generic path
             const hamiltonians::morse h{v.at("mass"), v.at("depth"), v.at("width"), v.at("position")};
             const phase_space<double, 1> x0(one_dof(0.5), one_dof(0.4));
             const bool bound = energy(h, x0) < h.depth;
-            return model<1>(h, stacked(x0), bound ? exact_flow(h, x0) : nullptr);
+            return model<1, own>(h, stacked(x0), bound ? exact_flow(h, x0) : nullptr);
         },
         .period = {"small-oscillation period 2 pi / (a sqrt(2 D / m))",
                    [](const parameter_values& v) {

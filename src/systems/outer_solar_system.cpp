@@ -11,8 +11,10 @@ system_entry outer_solar_system_entry() {
         .name = "outer_solar_system",
         .description = "Sun and the five outer planets (Hairer, Lubich & Wanner, GNI Table 2.2); days, AU",
         .build = [](const parameter_values&) {
+            using enum method_kind;
+            constexpr compiled own{.kinds = {table, logh, odeint, wisdom_holman}, .classic = {"rk4"}};
             const hamiltonians::outer_solar_system h{};
-            return model<hamiltonians::outer_solar_system::dimension>(h, stacked(h.initial_state()));
+            return model<hamiltonians::outer_solar_system::dimension, own>(h, stacked(h.initial_state()));
         },
         .negative_potential = true,
         .period = {"Jupiter's orbital period, 4332.59 days (NASA planetary fact sheet)",

@@ -12,7 +12,9 @@ system_entry pendulum_entry() {
         .description = "H = p^2/(2 m l^2) + m g l (1 - cos q); q0 = 1.2, p0 = 0.3",
         .parameters = {positive("mass", 1, "m"), positive("length", 1, "l"), positive("gravity", 1, "g")},
         .build = [](const parameter_values& v) {
-            return model<1>(hamiltonians::pendulum{v.at("mass"), v.at("length"), v.at("gravity")}, {1.2, 0.3});
+            using enum method_kind;
+            constexpr compiled own{.kinds = {table, dprkn, odeint}, .classic = {"rk4"}};
+            return model<1, own>(hamiltonians::pendulum{v.at("mass"), v.at("length"), v.at("gravity")}, {1.2, 0.3});
         },
         .period = {"small-amplitude period 2 pi sqrt(l / g)",
                    [](const parameter_values& v) {

@@ -15,7 +15,9 @@ system_entry product_hamiltonian_entry() {
         .parameters = {of_initial_state(any("q", -3, "starting q (Tao's -3)")),
                        of_initial_state(any("p", 0, "starting p"))},
         .build = [](const parameter_values& v) {
-            return model<1>(hamiltonians::product_hamiltonian{}, {v.at("q"), v.at("p")});
+            using enum method_kind;
+            constexpr compiled own{.kinds = {gauss, tao, semiexplicit, odeint}};
+            return model<1, own>(hamiltonians::product_hamiltonian{}, {v.at("q"), v.at("p")});
         },
         .period = {"small-oscillation period 2 pi about the origin",
                    [](const parameter_values&) { return two_pi; }},

@@ -12,7 +12,8 @@ system_entry relativistic_pendulum_entry() {
         .description = "H = m c^2 sqrt(1 + p^2/(m c)^2) + k (1 - cos q): a non-quadratic T; q0 = 1.2, p0 = 0.9",
         .parameters = {positive("mass", 1, "m"), positive("c", 1, "speed of light"), positive("k", 1, "restoring torque")},
         .build = [](const parameter_values& v) {
-            return model<1>(hamiltonians::relativistic_pendulum{v.at("mass"), v.at("c"), v.at("k")}, {1.2, 0.9});
+            constexpr compiled own{};  // no built-in scene: every method on the generic path
+            return model<1, own>(hamiltonians::relativistic_pendulum{v.at("mass"), v.at("c"), v.at("k")}, {1.2, 0.9});
         },
         .kinetic_not_quadratic = true,
         .period = {"small-amplitude, slow period 2 pi sqrt(m / k)",

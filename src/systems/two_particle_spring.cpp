@@ -13,8 +13,10 @@ system_entry two_particle_spring_entry() {
         .parameters = {positive("mass", 1, "each particle's mass"), positive("stiffness", 1, "spring constant k")},
         .exact = true,
         .build = [](const parameter_values& v) {
+            using enum method_kind;
+            constexpr compiled own{.kinds = {table, odeint}, .classic = {"rk4"}};
             const hamiltonians::two_particle_spring h{v.at("mass"), v.at("stiffness")};
-            return model<4>(h, stacked(hamiltonians::two_particle_spring::initial_state()),
+            return model<4, own>(h, stacked(hamiltonians::two_particle_spring::initial_state()),
                             exact_flow(h, hamiltonians::two_particle_spring::initial_state()));
         },
         .period = {"period 2 pi sqrt(m / (2 k)) of the relative motion",

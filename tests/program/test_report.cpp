@@ -41,7 +41,7 @@ t_end = 10
     CHECK(rows[0] == std::vector<std::string>{"scene", "method", "kind", "dt", "tolerance", "status", "blowup_step",
                                               "blowup_time", "steps", "force_evaluations", "seconds", "seconds_min",
                                               "seconds_max", "max_energy_error", "final_error", "reference_error",
-                                              "loop_area_error"});
+                                              "loop_area_error", "path"});
     std::map<std::string, std::vector<double>> errors;
     for (std::size_t i = 1; i < rows.size(); ++i) {
         REQUIRE(rows[i].size() == rows[0].size());

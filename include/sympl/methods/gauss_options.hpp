@@ -62,7 +62,11 @@ inline constexpr double gauss_jacobian_refresh = 0.1;
 template <class H>
 struct separable_as_general {
     H h;
-    template <class V> auto energy(const V& q, const V& p) const { return h.kinetic(p) + h.potential(q); }
+    template <class V>
+        requires separable_hamiltonian<H, V>
+    auto energy(const V& q, const V& p) const {
+        return h.kinetic(p) + h.potential(q);
+    }
     template <class V> void dH_dq(const V& q, const V&, V& out) const {
         force(h, q, out);
         out = -out;

@@ -48,12 +48,16 @@ struct logh {
     template <class Vec>
     using inner_vector = Eigen::Matrix<scalar_of<Vec>, physical_dimension(Vec::RowsAtCompileTime), 1>;
 
+    // Only where the system takes the vectors (a system of fixed scalar type
+    // then leaves LogH without the force's derivative, not without LogH).
     template <class Vec>
+        requires separable_hamiltonian<H, inner_vector<Vec>>
     scalar_of<Vec> kinetic(const Vec& P) const {
         using std::log;
         return log(positive_kinetic(P, inner_vector<Vec>(P.head(P.size() - 1))));
     }
     template <class Vec>
+        requires separable_hamiltonian<H, inner_vector<Vec>>
     scalar_of<Vec> potential(const Vec& Q) const {
         using std::log;
         return -log(negative_potential(Q, scalar_of<Vec>(system.potential(inner_vector<Vec>(Q.head(Q.size() - 1))))));

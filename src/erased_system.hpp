@@ -1,0 +1,202 @@
+#pragma once
+// A system of any type behind a few function pointers: what the generic path
+// (generic_path.hpp) runs on where a system's registry entry compiles nothing
+// of its own. Each of T, V, force and velocity (or H, dH/dq and dH/dp) is one
+// indirect call on dynamic-size vectors of a few scalar types: double for the
+// runs, long double for the references, the dual numbers of Gauss-Legendre's
+// Newton Jacobian and of MEGNO's tangent. The kinds' templates are then
+// compiled once for these two types instead of once per system (docs/layout.md,
+// "What the program compiles"). The concrete side of each pointer is
+// instantiated in the system's own translation unit (of()); a scalar its
+// system cannot take throws where it is called.
+#include <concepts>
+#include <memory>
+#include <tuple>
+#include <type_traits>
+#include <utility>
+
+#include <sympl/core/dual.hpp>
+#include <sympl/core/general_hamiltonian.hpp>
+#include <sympl/core/hamiltonian.hpp>
+
+namespace sympl::app {
+
+template <class S>
+using erased_vector_of = Eigen::Matrix<S, Eigen::Dynamic, 1>;
+using erased_vector = erased_vector_of<double>;
+
+namespace detail {
+
+// The calls of one scalar type S on a separable system: T, V, force, velocity.
+template <class S>
+struct separable_calls {
+    using V = erased_vector_of<S>;
+    S (*kinetic)(const void*, const V&) = nullptr;
+    S (*potential)(const void*, const V&) = nullptr;
+    void (*force)(const void*, const V&, V&) = nullptr;
+    void (*velocity)(const void*, const V&, V&) = nullptr;
+
+    template <class Sys>
+    static separable_calls of() {
+        separable_calls c;
+        if constexpr (separable_hamiltonian<Sys, V>) {
+            c.kinetic = [](const void* s, const V& p) { return S(static_cast<const Sys*>(s)->kinetic(p)); };
+            c.potential = [](const void* s, const V& q) { return S(static_cast<const Sys*>(s)->potential(q)); };
+            c.force = [](const void* s, const V& q, V& f) { sympl::force(*static_cast<const Sys*>(s), q, f); };
+            c.velocity = [](const void* s, const V& p, V& v) { sympl::velocity(*static_cast<const Sys*>(s), p, v); };
+        } else {
+            c.kinetic = c.potential = [](const void*, const V&) -> S { refuse_scalar(); };
+            c.force = c.velocity = [](const void*, const V&, V&) { refuse_scalar(); };
+        }
+        return c;
+    }
+    [[noreturn]] static void refuse_scalar() {
+        throw invalid_argument("the system's T and V are not written for this scalar type (dual numbers or long "
+                               "double); expected T and V templated on the vector type");
+    }
+};
+
+// The calls of one scalar type S on any H(q, p): H, dH/dq, dH/dp.
+template <class S>
+struct general_calls {
+    using V = erased_vector_of<S>;
+    S (*energy)(const void*, const V&, const V&) = nullptr;
+    void (*dH_dq)(const void*, const V&, const V&, V&) = nullptr;
+    void (*dH_dp)(const void*, const V&, const V&, V&) = nullptr;
+
+    template <class H>
+    static general_calls of() {
+        general_calls c;
+        if constexpr (general_hamiltonian<H, V>) {
+            c.energy = [](const void* s, const V& q, const V& p) { return S(static_cast<const H*>(s)->energy(q, p)); };
+            c.dH_dq = [](const void* s, const V& q, const V& p, V& out) {
+                sympl::dH_dq(*static_cast<const H*>(s), q, p, out);
+            };
+            c.dH_dp = [](const void* s, const V& q, const V& p, V& out) {
+                sympl::dH_dp(*static_cast<const H*>(s), q, p, out);
+            };
+        } else {
+            c.energy = [](const void*, const V&, const V&) -> S { separable_calls<S>::refuse_scalar(); };
+            c.dH_dq = c.dH_dp = [](const void*, const V&, const V&, V&) { separable_calls<S>::refuse_scalar(); };
+        }
+        return c;
+    }
+};
+
+template <class S, class... Ts>
+inline constexpr bool one_of = (std::same_as<S, Ts> || ...);
+
+}  // namespace detail
+
+// H = T(p) + V(q) of a separable system, type-erased: on doubles (the runs),
+// long doubles (the reference), dual<double, 8> (a separable system taken as a
+// general one in Gauss-Legendre's Newton Jacobian) and dual<double, 1>
+// (MEGNO's tangent in ensembles).
+class erased_separable {
+public:
+    template <class S>
+    static constexpr bool takes = detail::one_of<S, double, long double, dual<double, 8>, dual<double, 1>>;
+
+    template <class V>
+        requires takes<scalar_of<V>> && std::same_as<V, erased_vector_of<scalar_of<V>>>
+    scalar_of<V> kinetic(const V& p) const {
+        return calls<scalar_of<V>>().kinetic(self_.get(), p);
+    }
+    template <class V>
+        requires takes<scalar_of<V>> && std::same_as<V, erased_vector_of<scalar_of<V>>>
+    scalar_of<V> potential(const V& q) const {
+        return calls<scalar_of<V>>().potential(self_.get(), q);
+    }
+    template <class V>
+        requires takes<scalar_of<V>> && std::same_as<V, erased_vector_of<scalar_of<V>>>
+    void force(const V& q, V& f) const {
+        calls<scalar_of<V>>().force(self_.get(), q, f);
+    }
+    template <class V>
+        requires takes<scalar_of<V>> && std::same_as<V, erased_vector_of<scalar_of<V>>>
+    void velocity(const V& p, V& v) const {
+        calls<scalar_of<V>>().velocity(self_.get(), p, v);
+    }
+    // J_F(q) u for the force-gradient kicks, on doubles; a system without it
+    // was refused before the run by its form (requirements.hpp).
+    void force_derivative(const erased_vector& q, const erased_vector& u, erased_vector& df) const {
+        force_derivative_(self_.get(), q, u, df);
+    }
+
+    template <class Sys>
+    static erased_separable of(Sys sys) {
+        erased_separable e;
+        e.self_ = std::make_shared<const Sys>(std::move(sys));
+        e.calls_ = {detail::separable_calls<double>::of<Sys>(), detail::separable_calls<long double>::of<Sys>(),
+                    detail::separable_calls<dual<double, 8>>::of<Sys>(),
+                    detail::separable_calls<dual<double, 1>>::of<Sys>()};
+        e.force_derivative_ = [](const void* s, const erased_vector& q, const erased_vector& u, erased_vector& df) {
+            if constexpr (differentiable_force<Sys, erased_vector>)
+                sympl::force_derivative(*static_cast<const Sys*>(s), q, u, df);
+            else
+                throw invalid_argument("the system gives neither force_derivative nor a potential templated on its "
+                                       "scalar");
+        };
+        return e;
+    }
+
+private:
+    template <class S>
+    const detail::separable_calls<S>& calls() const {
+        return std::get<detail::separable_calls<S>>(calls_);
+    }
+
+    std::shared_ptr<const void> self_;
+    std::tuple<detail::separable_calls<double>, detail::separable_calls<long double>,
+               detail::separable_calls<dual<double, 8>>, detail::separable_calls<dual<double, 1>>>
+        calls_;
+    void (*force_derivative_)(const void*, const erased_vector&, const erased_vector&, erased_vector&) = nullptr;
+};
+
+// Any H(q, p), type-erased: on doubles, long doubles (the reference) and the
+// dual numbers of Gauss-Legendre's Newton Jacobian in both.
+class erased_general {
+public:
+    template <class S>
+    static constexpr bool takes = detail::one_of<S, double, long double, dual<double, 8>, dual<long double, 8>>;
+
+    template <class V>
+        requires takes<scalar_of<V>> && std::same_as<V, erased_vector_of<scalar_of<V>>>
+    scalar_of<V> energy(const V& q, const V& p) const {
+        return calls<scalar_of<V>>().energy(self_.get(), q, p);
+    }
+    template <class V>
+        requires takes<scalar_of<V>> && std::same_as<V, erased_vector_of<scalar_of<V>>>
+    void dH_dq(const V& q, const V& p, V& out) const {
+        calls<scalar_of<V>>().dH_dq(self_.get(), q, p, out);
+    }
+    template <class V>
+        requires takes<scalar_of<V>> && std::same_as<V, erased_vector_of<scalar_of<V>>>
+    void dH_dp(const V& q, const V& p, V& out) const {
+        calls<scalar_of<V>>().dH_dp(self_.get(), q, p, out);
+    }
+
+    template <class H>
+    static erased_general of(H h) {
+        erased_general e;
+        e.self_ = std::make_shared<const H>(std::move(h));
+        e.calls_ = {detail::general_calls<double>::of<H>(), detail::general_calls<long double>::of<H>(),
+                    detail::general_calls<dual<double, 8>>::of<H>(),
+                    detail::general_calls<dual<long double, 8>>::of<H>()};
+        return e;
+    }
+
+private:
+    template <class S>
+    const detail::general_calls<S>& calls() const {
+        return std::get<detail::general_calls<S>>(calls_);
+    }
+
+    std::shared_ptr<const void> self_;
+    std::tuple<detail::general_calls<double>, detail::general_calls<long double>,
+               detail::general_calls<dual<double, 8>>,
+               detail::general_calls<dual<long double, 8>>>
+        calls_;
+};
+
+}  // namespace sympl::app

@@ -1,0 +1,102 @@
+// The generic path (src/generic_path.hpp): every (system, kind) pair of the
+// built-in scenes is compiled for its system; a pair that is not runs through
+// the type-erased system, is marked, and gives what the compiled path gives
+// for the same method and steps.
+#include <doctest/doctest.h>
+
+#include <string>
+#include <vector>
+
+#include <sympl/hamiltonians/double_pendulum.hpp>
+#include <sympl/hamiltonians/fpu_beta.hpp>
+#include <sympl/hamiltonians/pendulum.hpp>
+
+#include "generic_path.hpp"
+#include "scene.hpp"
+#include "systems.hpp"
+
+namespace test_program_test_generic_path {  // one per file: the tests build in batches (CMakeLists.txt)
+
+using namespace sympl::app;
+
+namespace {
+run_request request(double dt) {
+    run_request rq;
+    rq.dt = dt;
+    rq.tolerance = 1e-9;
+    rq.energy = true;
+    rq.timing_repeats = 0;
+    return rq;
+}
+}  // namespace
+
+TEST_CASE("every method of every built-in scene runs compiled for its system") {
+    std::size_t pairs = 0;
+    for (const bool quick : {true, false})
+        for (const scene& s : default_scenes(quick)) {
+            const problem p = make_problem(s.system, s.parameters, s.q0, s.p0, s.source);
+            for (const scene_method& m : s.methods) {
+                INFO(s.name << ": " << m.name);
+                CHECK(p.compiled.has(m.kind, m.classic));
+                ++pairs;
+            }
+        }
+    CHECK(pairs > 100);
+}
+
+TEST_CASE("a kind not compiled for a system runs on the generic path and is marked") {
+    // Nothing is compiled for the Morse oscillator (no built-in scene runs it).
+    const problem morse = make_problem("morse", {}, {}, {}, "test");
+    for (const char* name : {"leapfrog_kdk", "blanes_moan_s6", "rk4", "dprkn8", "gauss_4", "odeint_rk4"}) {
+        INFO(name);
+        const method_spec m = *resolve_method(name, {});
+        CHECK_FALSE(morse.compiled.has(m.kind, m.classic));
+        const run_result r = morse.run(m, request(0.01), 0.0, 10.0, morse.x0);
+        CHECK(r.generic);
+        REQUIRE(r.stable);
+        CHECK(r.steps == 1000);
+        CHECK(r.max_energy_error < 1e-3);  // second order or better at dt = 0.01
+    }
+    // The pendulum's compiled kinds are not marked.
+    const problem pendulum = make_problem("pendulum", {}, {}, {}, "test");
+    CHECK_FALSE(pendulum.run(*resolve_method("leapfrog_kdk", {}), request(0.01), 0.0, 1.0, pendulum.x0).generic);
+}
+
+// The same method and steps, compiled against generic: the same step count and
+// the final state to a few rounding units (the generic path's states are of
+// dynamic size where the compiled pendulum's are fixed, which may change the
+// order of a sum, never an operation).
+TEST_CASE("the generic path gives what the compiled path gives") {
+    const auto compare = [](const problem& p, const run_function& generic, const char* name, double dt) {
+        INFO(name);
+        const method_spec m = *resolve_method(name, {});
+        REQUIRE(p.compiled.has(m.kind, m.classic));
+        const run_result a = p.run(m, request(dt), 0.0, 20.0, p.x0);
+        const run_result b = generic(m, request(dt), 0.0, 20.0, p.x0);
+        REQUIRE(a.stable);
+        REQUIRE(b.stable);
+        CHECK_FALSE(a.generic);
+        CHECK(a.steps == b.steps);
+        CHECK(a.force_evaluations == b.force_evaluations);
+        CHECK(relative_difference(b.final_state, a.final_state) < 64 * 2.2e-16);
+        CHECK(std::abs(b.max_energy_error - a.max_energy_error) <= 64 * 2.2e-16);
+    };
+    const problem pendulum = make_problem("pendulum", {}, {}, {}, "test");
+    const run_function pendulum_generic =
+        detail::generic_run(erased_separable::of(sympl::hamiltonians::pendulum{1, 1, 1}), pendulum.energy);
+    for (const char* name : {"leapfrog_kdk", "blanes_moan_s6", "rk4", "dprkn8", "dprkn8_controlled", "odeint_dopri5"})
+        compare(pendulum, pendulum_generic, name, 0.05);
+
+    const problem chain = make_problem("fpu_beta", {}, {}, {}, "test");
+    const run_function chain_generic =
+        detail::generic_run(erased_separable::of(sympl::hamiltonians::fpu_beta{1}), chain.energy);
+    for (const char* name : {"yoshida_6", "dprkn12"}) compare(chain, chain_generic, name, 0.1);
+
+    const problem dp = make_problem("double_pendulum", {}, {}, {}, "test");
+    const run_function dp_generic =
+        detail::generic_run(erased_general::of(sympl::hamiltonians::double_pendulum{1, 1, 1, 1, 1}), dp.energy);
+    for (const char* name : {"gauss_6", "tao(yoshida_6)", "semiexplicit(yoshida_4)"})
+        compare(dp, dp_generic, name, 0.02);
+}
+
+}  // namespace test_program_test_generic_path
