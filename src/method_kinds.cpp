@@ -248,7 +248,30 @@ wisdom_holman_options wisdom_holman_options_of(const method_spec& m) {
             .coordinates = m.jacobi ? wh_coordinates::jacobi : wh_coordinates::democratic_heliocentric};
 }
 
+namespace {
+// How deep the parentheses of a name nest.
+int nesting_of(const std::string& name) {
+    int depth = 0, deepest = 0;
+    for (char c : name) {
+        if (c == '(') deepest = std::max(deepest, ++depth);
+        else if (c == ')') --depth;
+    }
+    return deepest;
+}
+
+// A name as an error quotes it: its first 60 characters, with its length when
+// it is longer (a scene's name may be a megabyte).
+std::string quoted_start(const std::string& name) {
+    if (name.size() <= 60) return "'" + name + "'";
+    return "'" + name.substr(0, 60) + "...' (" + std::to_string(name.size()) + " characters)";
+}
+}  // namespace
+
 std::optional<method_spec> resolve_method(const std::string& name, const std::map<std::string, table>& inline_tables) {
+    if (const int depth = nesting_of(name); depth > max_method_nesting)
+        throw invalid_argument("method " + quoted_start(name) + " nests its parentheses " + std::to_string(depth) +
+                               " deep; expected at most " + std::to_string(max_method_nesting) +
+                               " (extrapolated(logh(leapfrog_dkd), 6) nests 2 deep)");
     if (name.size() > 14 && name.rfind("extrapolated(", 0) == 0 && name.back() == ')') return extrapolated(name, inline_tables);
     if (auto it = inline_tables.find(name); it != inline_tables.end()) return spec(name, method_kind::table, it->second);
     if (name.size() > 13 && name.rfind("compensated(", 0) == 0 && name.back() == ')') {

@@ -346,6 +346,10 @@ std::vector<std::string> method_names_beside_tables();
 // extrapolated(...), logh(...), tao(...), semiexplicit(...) or wh(...) is an
 // invalid_argument that says what is wrong.
 inline constexpr int max_extrapolation_columns = 12;
+// How deep a method name's calls may nest (extrapolated(logh(leapfrog_dkd), 6)
+// nests 2 deep): a deeper name is refused before any of it is resolved, so
+// that resolving is a bounded recursion whatever a scene holds.
+inline constexpr int max_method_nesting = 8;
 std::optional<method_spec> resolve_method(const std::string& name, const std::map<std::string, table>& inline_tables);
 
 // "did you mean 'logh(leapfrog_dkd)'? " for a pattern around an unknown

@@ -69,7 +69,13 @@ void read_inline_table(const reader& r, const toml::node& e, std::map<std::strin
     const std::string name = r.string(name_node, "table.name");
     // A scene's table never hides a method of the same name, nor another of its tables.
     if (tables.count(name)) r.fail(name_node, "a second [[table]] named '" + name + "'; expected each name once");
-    if (resolve_method(name, {})) r.fail(name_node, "[[table]] name '" + name + "' is already a method; expected a new name");
+    bool taken = false;
+    try {
+        taken = resolve_method(name, {}).has_value();
+    } catch (const invalid_argument& e) {  // a name no method has (nested too deep, a malformed pattern)
+        r.fail(name_node, std::string("[[table]] name: ") + e.what());
+    }
+    if (taken) r.fail(name_node, "[[table]] name '" + name + "' is already a method; expected a new name");
     const auto kick = r.numbers(*t->get("kick"), "table.kick"), drift = r.numbers(*t->get("drift"), "table.drift");
     int order = 0;
     if (const toml::node* o = t->get("order")) {

@@ -1,6 +1,7 @@
 #pragma once
 // Reading a scene's TOML (scene.cpp, scene_ensemble.cpp): every error names
 // the file, line and column and what was expected.
+#include <algorithm>
 #include <set>
 #include <sstream>
 #include <string>
@@ -21,6 +22,29 @@ inline std::string join(const std::vector<std::string>& v) {
     return out;
 }
 
+// A message about a scene as the program prints it: one line, as written.
+// Control characters a name may hold (a NUL that would end the message, a
+// newline that would split it, a terminal's escape) are written as \0, \n,
+// \x1b; a message past 2000 characters (a megabyte name quoted in it) keeps
+// its first 1200 and last 600 with the count cut between them.
+inline std::string printable(const std::string& what) {
+    static constexpr char hex[] = "0123456789abcdef";
+    std::string out;
+    out.reserve(std::min<std::size_t>(what.size(), 4096));
+    for (const char c : what) {
+        const auto u = static_cast<unsigned char>(c);
+        if (u >= 0x20 && u != 0x7f) out += c;
+        else if (c == '\n') out += "\\n";
+        else if (c == '\t') out += "\\t";
+        else if (c == '\0') out += "\\0";
+        else out += std::string("\\x") + hex[u >> 4] + hex[u & 15];
+    }
+    constexpr std::size_t longest = 2000, head = 1200, tail = 600;
+    if (out.size() <= longest) return out;
+    return out.substr(0, head) + " ... (" + std::to_string(out.size() - head - tail) + " characters cut) ... " +
+           out.substr(out.size() - tail);
+}
+
 // Reads typed values and reports where a value is wrong. Unknown names (keys,
 // the system, methods) are collected and reported together, one line each,
 // with the first error that stops the reading or at its end (throw_unknown).
@@ -36,19 +60,28 @@ struct reader {
         return source + ":" + std::to_string(where.begin.line) + ":" + std::to_string(where.begin.column) + ": ";
     }
     [[noreturn]] void fail(const toml::source_region& where, const std::string& what) const {
-        std::string all;
-        for (const auto& line : unknown) all += line + "\n";
-        throw scene_error(all + at(where) + what);
+        std::string all = unknown_lines();
+        throw scene_error(all + (all.empty() ? "" : "\n") + at(where) + printable(what));
     }
     [[noreturn]] void fail(const toml::node& n, const std::string& what) const { fail(n.source(), what); }
 
     // An unknown name: noted, and the reading goes on to find the others.
-    void unknown_name(const toml::node& n, const std::string& what) const { unknown.push_back(at(n.source()) + what); }
+    void unknown_name(const toml::node& n, const std::string& what) const {
+        unknown.push_back(at(n.source()) + printable(what));
+    }
     void throw_unknown() const {
         if (unknown.empty()) return;
+        throw scene_error(unknown_lines());
+    }
+    // The unknown names, one line each, the first 20 of them and how many more.
+    static constexpr std::size_t listed_unknown = 20;
+    std::string unknown_lines() const {
         std::string all;
-        for (const auto& line : unknown) all += (all.empty() ? "" : "\n") + line;
-        throw scene_error(all);
+        for (std::size_t i = 0; i < unknown.size() && i < listed_unknown; ++i)
+            all += (all.empty() ? "" : "\n") + unknown[i];
+        if (unknown.size() > listed_unknown)
+            all += "\n" + source + ": and " + std::to_string(unknown.size() - listed_unknown) + " more unknown names";
+        return all;
     }
 
     // Only the listed keys: anything else is a typo the user wants to hear about.

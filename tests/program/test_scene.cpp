@@ -88,7 +88,46 @@ TEST_CASE("scene: errors name the file, line and column and what was expected") 
     CHECK(error_of(replace(good, "drift = [1.0, 0.0]", "drift = [1.0, 0.5]")) ==
           "scene.toml:9:1: table 'mine': sum(drift) = 1.5; expected 1 within 1e-14");
     CHECK(error_of("system = [").rfind("scene.toml:1:11: not valid TOML", 0) == 0);
+    // A method name nested 5000 deep is refused before it is resolved (its
+    // recursion overflowed the stack), quoted by its start and length.
+    std::string deep = "leapfrog_kdk";
+    for (int k = 0; k < 5000; ++k) deep = "logh(" + deep + ")";
+    const std::string nested = error_of(replace(good, "\"rk4\"", "\"" + deep + "\""));
+    CHECK(nested.rfind("scene.toml:4:36: method 'logh(logh(", 0) == 0);
+    CHECK(nested.find("...' (30012 characters) nests its parentheses 5000 deep; expected at most 8") !=
+          std::string::npos);
+    CHECK(nested.size() < 400);
+    std::string eight = "leapfrog_kdk", nine;
+    for (int k = 0; k < 8; ++k) eight = "compensated(" + eight + ")";
+    nine = "compensated(" + eight + ")";
+    CHECK(error_of(replace(good, "\"rk4\"", "\"" + eight + "\"")).find("nests") == std::string::npos);
+    CHECK(error_of(replace(good, "\"rk4\"", "\"" + nine + "\"")).find("nests its parentheses 9 deep") !=
+          std::string::npos);
     CHECK_THROWS_WITH_AS(load_scene("/nonexistent/scene.toml"), doctest::Contains("cannot open"), scene_error);
+}
+
+TEST_CASE("scene: a name's control characters, a megabyte name and a thousand unknown keys give short one-line errors") {
+    const auto method_error = [](const std::string& toml_name) {
+        std::string text = good;
+        text.replace(text.find("\"rk4\""), 5, "\"" + toml_name + "\"");
+        return error_of(text);
+    };
+    // TOML escapes for NUL, a newline and a terminal's escape, inside a method name.
+    const std::string e = method_error("rk\\u0000x\\nred\\u001b[31m");
+    CHECK(e.rfind("scene.toml:4:36: unknown method 'rk\\0x\\nred\\x1b[31m'", 0) == 0);
+    CHECK(e.find('\n') == std::string::npos);
+    CHECK(e.find('\x1b') == std::string::npos);
+    // A name of a megabyte is quoted by its start and end, with the count cut.
+    const std::string m = method_error(std::string(1 << 20, 'q'));
+    CHECK(m.size() < 2100);
+    CHECK(m.find("characters cut") != std::string::npos);
+    CHECK(m.rfind("scene.toml:4:36: unknown method 'qqqq", 0) == 0);
+    // A thousand unknown keys: the first 20, then how many more.
+    std::string keys = good;
+    for (int k = 0; k < 1000; ++k) keys.insert(keys.find("t_end"), "unknown_" + std::to_string(k) + " = 1\n");
+    const std::string many = error_of(keys);
+    CHECK(std::count(many.begin(), many.end(), '\n') == 20);
+    CHECK(many.find("scene.toml: and 980 more unknown names") != std::string::npos);
 }
 
 TEST_CASE("scene: the built-in set parses, quick and full") {
