@@ -303,7 +303,7 @@ TEST_CASE("wisdom_holman: steps(n) equals n calls of step() to rounding, counter
         fresh.step(w, h);
         CHECK(max_difference(z, w) == 0);
     }
-    // The driver of integrate.hpp, backwards and forwards.
+    // The driver of fixed_step.hpp, backwards and forwards.
     wisdom_holman_stepper<State> wh(s.mass, s.G, method("saba_2"));
     State x = s.start;
     const run_summary r = integrate_until(wh, x, 0.0, 10 * two_pi, h);

@@ -204,9 +204,9 @@ auto operator<=>(const A& a, const B& b) { return reverse_primal(a) <=> reverse_
 // A function of a compound argument, sqrt(dx * dx + dy * dy + dz * dz), makes
 // the argument a taped value first (a statement, if it depends on more than two
 // nodes) and keeps the function as its scale. Nesting the whole expression made
-// every enclosing expression carry and copy it: GCC then kept the trees in
-// memory, and a softened pair potential, -1 / sqrt(r2 + e2), cost 47 ns per
-// pair where recording r2 first cost 26 ns (one more statement, one more edge).
+// every enclosing expression carry and copy it, and GCC then kept the trees in
+// memory: recording the argument first, one more statement and one more edge,
+// is the faster (docs/speed.md, "Figures behind choices in the code").
 template <reverse_expression A>
 auto function_argument(const A& a) {
     if constexpr (A::leaves > 2) return taped<reverse_value_of<A>>(a);

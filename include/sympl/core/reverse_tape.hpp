@@ -74,7 +74,7 @@ public:
     // holding everything it emitted writes nothing: its value is the held pair
     // with its partials (reverse_mode.hpp's taped). Anything else is written
     // out, a node possibly twice (x0 * x0 + x1 * x1 gives x0, x1, x1: the
-    // sweep adds both; a test for it cost 8% of the FPU chain's gradient). An
+    // sweep adds both; a test for it cost more than it saves, docs/speed.md). An
     // expression of one taped leaf is written by a writer with no cursor: it
     // emits once and can never flush.
     struct writer {

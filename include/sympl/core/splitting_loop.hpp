@@ -251,9 +251,9 @@ struct splitting_loop : substep_updates<H, State> {
 
     // One step of a small state handed back as the last run returned it, with
     // the same dt: what run(x, dt, 1, true, false, true) does, without its
-    // general set-up, which is a third of the cost of a call on a 2-D state.
-    // Not forced inline: forced, it crowded the force out of the caller's
-    // loop (Henon-Heiles in bench_splitting took twice as long).
+    // general set-up, a large part of a call's cost on a 2-D state. Not forced
+    // inline: forced, it crowded the force out of the caller's loop (both
+    // measured in docs/speed.md, "Figures behind choices in the code").
     void joined_step(State& x, scalar dt) {
         const std::size_t L = weights.size();
         State y = x;

@@ -176,7 +176,7 @@ void dense_by_chunks(Stepper& stepper, typename Stepper::state_type& x, typename
 // same run_summary. A stepper that groups steps (detail::groups_steps: a
 // splitting, processed or Wisdom-Holman stepper) is run by integrate_until in
 // its chunks of run_options::check_every steps, observed only at the chunk
-// ends (which does not change how the steps group; integrate.hpp, first_step),
+// ends (which does not change how the steps group; fixed_step.hpp, first_step),
 // and the step ends inside a chunk that holds output times are made by a copy
 // of the stepper, replayed from the chunk's start: steps(m) up to the start of
 // the step holding an output time, then steps(1) (the chunk's last step ends

@@ -169,7 +169,7 @@ public:
         }
     }
 
-    // One step from time t: a time-aware stepper (integrate.hpp's drivers pass t).
+    // One step from time t: a time-aware stepper (fixed_step.hpp's drivers pass t).
     void step(State& x, scalar t, scalar dt) {
         check(x, dt);
         if (!(dt == sized_for_)) size_substeps(dt);

@@ -231,7 +231,7 @@ public:
     // integration_error names the step, the time, the divergence and omega.
     // Times in its messages count from when the copies were made.
     void step(state_type& x, scalar dt) { advance(x, dt, nullptr); }
-    // The same with the time at the start of the step (the drivers of integrate.hpp call this one).
+    // The same with the time at the start of the step (the drivers of fixed_step.hpp call this one).
     void step(state_type& x, scalar t, scalar dt) {
         const P t0 = primal(t);
         advance(x, dt, &t0);

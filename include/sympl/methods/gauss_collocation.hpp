@@ -62,7 +62,7 @@ public:
     // One step of size dt (dt < 0 runs backwards). On integration_error x is unchanged.
     void step(State& x, scalar dt) { advance(x, std::numeric_limits<double>::quiet_NaN(), dt); }
     // The same with the time of the step's start, which only the error reports:
-    // integrate.hpp's driver calls this one and adds the step's index.
+    // fixed_step.hpp's driver calls this one and adds the step's index.
     void step(State& x, scalar t, scalar dt) { advance(x, double(primal(t)), dt); }
     // Forget the last step's stages: the next step starts from Euler's polynomial.
     void reset() { have_stages_ = false; }

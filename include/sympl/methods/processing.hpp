@@ -71,7 +71,7 @@ inline processed_method make_processed(std::string name, table kernel, const tab
 }
 
 // Runs a processed_method. Same calls as splitting_stepper (step, steps,
-// resume_steps, counters), so the drivers of integrate.hpp and their observers
+// resume_steps, counters), so the drivers of fixed_step.hpp and their observers
 // work unchanged and see the true state. The kernel's state is reused while
 // the caller passes back, bit for bit, the state the last call returned and
 // the same dt; otherwise P^-1 is applied afresh (P depends on dt). Each call

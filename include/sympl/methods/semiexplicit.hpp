@@ -61,7 +61,7 @@ public:
 
     // Times in its messages count from the stepper's first step.
     void step(state_type& x, scalar dt) { advance(x, dt, this->elapsed_ + primal(dt)); }
-    // The same with the time at the start of the step (the drivers of integrate.hpp call this one).
+    // The same with the time at the start of the step (the drivers of fixed_step.hpp call this one).
     void step(state_type& x, scalar t, scalar dt) { advance(x, dt, primal(t) + primal(dt)); }
 
 private:

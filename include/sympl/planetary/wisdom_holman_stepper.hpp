@@ -22,7 +22,7 @@
 // non-finite mass, a non-finite coordinate, a planet at the star's position or
 // two planets at one position. A state that becomes non-finite during a run
 // is returned as non-finite, as splitting_stepper does, for the drivers of
-// integrate.hpp to report.
+// fixed_step.hpp to report.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -112,7 +112,7 @@ public:
     std::uint64_t interaction_evaluations() const {
         return std::visit([](auto& f) { return f.interaction_evaluations(); }, flows_);
     }
-    // The drivers' name (integrate.hpp) for the interaction evaluations.
+    // The drivers' name (fixed_step.hpp) for the interaction evaluations.
     std::uint64_t force_evaluations() const { return interaction_evaluations(); }
     // Planets the batched drift left to its scalar solve (kepler_drift_all).
     std::uint64_t kepler_fallbacks() const {
