@@ -121,8 +121,7 @@ public:
         const timing t = time_per_call(
             [&] {
                 State y = to_state<Dim>(x0);
-                no_observer nothing;
-                run_method(run_context<Sys, Dim, no_observer, Own>{sys_, m, rq, t0, t_end, y, nothing});
+                run_method(run_context<Sys, Dim, Own>{sys_, m, rq, t0, t_end, y, {}});
             },
             rq.timing_repeats, rq.min_measurement);
         r.seconds = t.median;
@@ -195,8 +194,8 @@ private:
         State x = to_state<Dim>(x0);
         try {
             const auto [steps, forces] =
-                run_method(run_context<Sys, Dim, decltype(observe), Own>{
-                    sys_, m, with_checkpoints, t0, t_end, x, observe, timed ? rows.interpolation() : nullptr});
+                run_method(run_context<Sys, Dim, Own>{sys_, m, with_checkpoints, t0, t_end, x, observe,
+                                                      timed ? rows.interpolation() : nullptr});
             r.steps = steps;
             r.force_evaluations = forces;
             r.final_state = to_vector(x);

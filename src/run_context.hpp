@@ -113,47 +113,48 @@ using own_interpolation = std::function<void(double theta, State& out)>;
 
 // What a kind's run gets: the system, the method, the request, the span, the
 // state (x0 in, the final state out) and the observer, called at t0 and after
-// every step when the run is observed (Observer is not no_observer), and,
+// every step when the run is observed (empty when the run is timed), and,
 // when the observer reads states between steps, where a kind whose stepper
-// interpolates its own steps puts that interpolation.
+// interpolates its own steps puts that interpolation. The observer is held
+// by reference (observer_ref), so the timed and the observed run of a
+// stepper are one driver, compiled once.
 // Own: the methods compiled for Sys (its registry entry's, model.hpp);
 // run_method reaches no other.
-template <class Sys, int Dim, class Observer, compiled_methods Own = compiled_methods{}>
+template <class Sys, int Dim, compiled_methods Own = compiled_methods{}>
 struct run_context {
     using system = Sys;
     using State = state_of<Dim>;
+    using observer = observer_ref<State, double>;
     static constexpr int dimension = Dim;
     static constexpr compiled_methods own = Own;
-    static constexpr bool observed = !std::is_same_v<Observer, no_observer>;
 
     const Sys& sys;
     const method_spec& m;
     const run_request& rq;
     double t0, t_end;
     State& x;
-    Observer& observe;
+    observer observe;
     own_interpolation<State>* interpolation = nullptr;
 
-    // Any sympl stepper over the span. Observed, a resumable method runs in
-    // the checkpointed driver whether or not the request asks for checkpoints
-    // (one driver compiled per stepper, not two; it saves none when not
-    // asked). Methods a checkpoint cannot resume were refused before
-    // (run_method reads their row); Resumable false, the row's answer for the
-    // kind (or a classic stepper's history), leaves that driver uncompiled.
+    bool observed() const { return observe.observing(); }
+
+    // Any sympl stepper over the span. A resumable method runs in the
+    // checkpointed driver, observed or not, asked for checkpoints or not (it
+    // saves none when not asked). Methods a checkpoint cannot resume were
+    // refused before (run_method reads their row); Resumable false, the row's
+    // answer for the kind (or a classic stepper's history), leaves that
+    // driver uncompiled.
     template <bool Resumable = true, class Stepper>
     steps_and_forces drive(Stepper stepper) const {
-        run_summary s;
-        if constexpr (observed && Resumable) {
+        if constexpr (Resumable) {
             return checkpointed(*this, stepper);
-        } else if constexpr (observed) {
-            if (rq.checkpoint.every_steps)
+        } else {
+            if (observed() && rq.checkpoint.every_steps)
                 throw std::logic_error("method '" + m.name +
                                        "': a checkpointed run its row refuses reached the driver");
-            s = integrate_until(stepper, x, t0, t_end, rq.dt, observe);
-        } else {
-            s = integrate_until(stepper, x, t0, t_end, rq.dt);
+            const run_summary s = integrate_until(stepper, x, t0, t_end, rq.dt, observe);
+            return {s.steps, s.force_evaluations};
         }
-        return {s.steps, s.force_evaluations};
     }
 };
 
@@ -245,6 +246,11 @@ private:
 template <class Context, class Stepper>
 steps_and_forces checkpointed(const Context& c, Stepper& stepper) {
     using State = typename Context::State;
+    using observer = typename Context::observer;
+    if (!c.observed()) {  // timed: nothing saved or restored
+        const run_summary s = integrate_until(stepper, c.x, c.t0, c.t_end, c.rq.dt, observer{});
+        return {s.steps, s.force_evaluations};
+    }
     checkpoint_keeper<Context, Stepper> keeper(c, stepper);
     run_options options;
     if (const checkpoint_record* from = keeper.restore()) {
@@ -256,7 +262,7 @@ steps_and_forces checkpointed(const Context& c, Stepper& stepper) {
         c.observe(y, t);
         if (!std::exchange(at_start, false)) keeper.after_step(y, t);
     };
-    const run_summary s = integrate_until(stepper, c.x, c.t0, c.t_end, c.rq.dt, observe, options);
+    const run_summary s = integrate_until(stepper, c.x, c.t0, c.t_end, c.rq.dt, observer(observe), options);
     return {options.first_step + s.steps, keeper.forces_before() + s.force_evaluations};
 }
 

@@ -70,8 +70,9 @@ struct run_kind<method_kind::logh> {
     static steps_and_forces in_fictitious_time(const C& c, Stepper stepper) {
         using Extended = typename Stepper::state_type;
         Extended X = to_extended(c.sys, c.x, c.t0);
+        using observer = observer_ref<Extended, double>;
         run_summary s;
-        if constexpr (C::observed) {
+        if (c.observed()) {
             const bool checkpointed = c.rq.checkpoint.every_steps > 0;
             checkpoint_keeper<C, Stepper> keeper(c, stepper);
             time_transformed_options options;
@@ -92,11 +93,11 @@ struct run_kind<method_kind::logh> {
                 c.observe(x, time);
                 if (checkpointed) keeper.after_step(x, time, [&] { return to_vector(y); });
             };
-            s = integrate_to_time(stepper, X, c.t_end, c.rq.dt, observe, {}, options);
+            s = integrate_to_time(stepper, X, c.t_end, c.rq.dt, observer(observe), {}, options);
             s.steps += options.first_step;
             s.force_evaluations += keeper.forces_before();
-        } else {
-            s = integrate_to_time(stepper, X, c.t_end, c.rq.dt);
+        } else {  // the same driver, nothing observed
+            s = integrate_to_time(stepper, X, c.t_end, c.rq.dt, observer{}, {}, {});
         }
         c.x = physical_state(X);
         return {s.steps, s.force_evaluations};
@@ -166,7 +167,7 @@ template <class C>
 steps_and_forces run_method(const C& c) {
     if (const needs n = requirement_of(c.m); !meets_at_run_time<typename C::system>(n))
         refuse<typename C::system>(c.m.name, n);
-    if (C::observed && c.rq.checkpoint.every_steps)
+    if (c.observed() && c.rq.checkpoint.every_steps)
         if (const std::string why = why_not_resumable(c.m); !why.empty()) throw invalid_argument(why);
     return [&]<std::size_t... K>(std::index_sequence<K...>) {
         steps_and_forces done{};

@@ -238,8 +238,8 @@ template <class C, class Run>
 steps_and_forces with_odeint(const C& c, Run run) {
     using R = odeint_run<typename C::system, C::dimension>;
     std::function<void(const typename C::State&, double)> observe;
-    if constexpr (C::observed) observe = [&](const typename C::State& y, double t) { c.observe(y, t); };
-    return run(R{c.sys, c.m, c.rq, c.t0, c.t_end, c.x, C::observed ? &observe : nullptr});
+    if (c.observed()) observe = c.observe;
+    return run(R{c.sys, c.m, c.rq, c.t0, c.t_end, c.x, c.observed() ? &observe : nullptr});
 }
 
 // One instantiation per system, whatever the observer: the member's stepper,

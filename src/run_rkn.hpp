@@ -34,20 +34,15 @@ struct run_kind<method_kind::dprkn> {
         if (!adaptive(c.m)) return c.drive(std::move(stepper));
         control_options control;
         control.absolute_tolerance = control.relative_tolerance = c.rq.tolerance;
-        if constexpr (C::observed) {
-            // Inside a step, the pair's own interpolation: the Hermite's is 1e5x the tolerance off here.
-            if (c.interpolation)
-                *c.interpolation = [&stepper](double theta, typename C::State& out) { stepper.interpolate(theta, out); };
-            return checkpointed_control(c, stepper, control);  // whether or not checkpoints are asked
-        } else {
-            const control_summary s = integrate_controlled(stepper, c.x, c.t0, c.t_end, control);
-            return {s.accepted, s.force_evaluations};
-        }
+        // Inside a step, the pair's own interpolation: the Hermite's is 1e5x the tolerance off here.
+        if (c.observed() && c.interpolation)
+            *c.interpolation = [&stepper](double theta, typename C::State& out) { stepper.interpolate(theta, out); };
+        return checkpointed_control(c, stepper, control);  // observed or not, checkpoints asked or not
     }
 
-    // Every observed controlled run: with a checkpoint every
-    // rq.checkpoint.every_steps steps when that is not 0 (one driver compiled,
-    // not two). The record's carried list: the controller's state (time, next
+    // Every controlled run, timed or observed: observed, with a checkpoint
+    // every rq.checkpoint.every_steps steps when that is not 0 (one driver
+    // compiled, not three). The record's carried list: the controller's state (time, next
     // step, last error, the summary so far), then the pair's carried list.
     template <class C, class Stepper>
     static steps_and_forces checkpointed_control(const C& c, Stepper& stepper, const control_options& control) {
@@ -65,6 +60,11 @@ struct run_kind<method_kind::dprkn> {
             r.done();
             stepper.restore_carried(pair);
         };
+        using observer = typename C::observer;
+        if (!c.observed()) {
+            const control_summary s = integrate_controlled(stepper, c.x, c.t0, c.t_end, control, observer{}, state);
+            return {s.accepted, s.force_evaluations};
+        }
         if (const checkpoint_record* from = keeper.restore(restore)) c.x = to_state<C::dimension>(from->state);
         const auto carried = [&] {
             std::vector<double> out;
@@ -80,7 +80,7 @@ struct run_kind<method_kind::dprkn> {
             c.observe(y, t);
             if (state.summary.accepted > 0) keeper.after_step(y, t, carried);  // not at t0
         };
-        const control_summary s = integrate_controlled(stepper, c.x, c.t0, c.t_end, control, observe, state);
+        const control_summary s = integrate_controlled(stepper, c.x, c.t0, c.t_end, control, observer(observe), state);
         return {s.accepted, s.force_evaluations};
     }
 };

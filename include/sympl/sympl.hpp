@@ -27,6 +27,7 @@
 #include "core/time_span.hpp"
 #include "core/linear_velocity.hpp"
 #include "core/wide_lanes.hpp"
+#include "drivers/observer.hpp"
 #include "drivers/fixed_step.hpp"
 #include "drivers/controlled.hpp"
 #include "drivers/hermite_interpolant.hpp"

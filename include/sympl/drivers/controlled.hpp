@@ -123,7 +123,7 @@ void control_loop(Stepper& stepper, typename Stepper::state_type& x, typename St
     const double k = Stepper::error_order;
     const double alpha = o.alpha / k, beta = o.beta / k;
     auto f0 = forces(stepper);
-    constexpr bool observed = !std::is_same_v<std::decay_t<Observer>, no_observer>;
+    const bool observed = observing(observer);
     T t = t0;
     double dt = std::clamp(o.dt_initial, o.dt_min, o.dt_max);
     double previous_error = 1;
@@ -132,7 +132,7 @@ void control_loop(Stepper& stepper, typename Stepper::state_type& x, typename St
         t = state->t, dt = state->dt, previous_error = state->previous_error;
         r = state->summary;
         f0 -= r.force_evaluations;
-    } else if constexpr (observed) {
+    } else if (observed) {
         observer(std::as_const(x), t0);
     }
     while (t < t_end) {
@@ -157,7 +157,7 @@ void control_loop(Stepper& stepper, typename Stepper::state_type& x, typename St
             after_rejection = false;
             if (!last) dt = std::clamp(hd * factor, o.dt_min, o.dt_max);
             if (state) *state = {t, dt, previous_error, r};
-            if constexpr (observed) observer(std::as_const(x), t);
+            if (observed) observer(std::as_const(x), t);
         } else {
             ++r.rejected;
             after_rejection = true;

@@ -14,12 +14,14 @@
 #include <type_traits>
 #include <utility>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 #include "../core/dual.hpp"
 #include "../core/error.hpp"
 #include "../core/phase_space.hpp"
 #include "../core/time_span.hpp"
+#include "observer.hpp"
 
 namespace sympl {
 
@@ -32,11 +34,6 @@ concept time_aware_stepper = requires(S s, typename S::state_type& x, typename S
 template <class S>
 concept fixed_step_stepper = time_aware_stepper<S> || requires(S s, typename S::state_type& x, typename S::scalar dt) {
     s.step(x, dt);
-};
-
-struct no_observer {
-    template <class State, class T>
-    void operator()(const State&, T) const {}
 };
 
 struct run_options {
@@ -118,6 +115,27 @@ std::uint64_t velocities(const Stepper& s) {
     if constexpr (requires { s.velocity_evaluations(); }) return s.velocity_evaluations(); else return 0;
 }
 
+// After a blow-up inside a chunk: the chunk replayed one step at a time from
+// its start to find the first step that is not finite, the state left before
+// it. Out of line and cold: no run pays for this copy of the step in its loop.
+template <class Stepper, class State, class T>
+[[noreturn, gnu::noinline, gnu::cold]] void replay_to_blow_up(Stepper& s, State& x, const State& checkpoint, T t0, T dt,
+                                                               std::size_t first, std::size_t m) {
+    x = checkpoint;
+    for (std::size_t j = 0; j < m; ++j) {
+        State before = x;
+        one_step(s, x, t0 + T(first + j) * dt, dt);
+        if (!is_finite(x)) {
+            x = before;
+            const std::size_t bad = first + j + 1;
+            const T t_bad = t0 + T(bad - 1) * dt;
+            throw blow_up(bad, static_cast<long double>(primal(t_bad)), static_cast<long double>(primal(dt)),
+                          "; the state is left at t = " + number(t_bad));
+        }
+    }
+    throw std::logic_error("a chunk of steps was not finite, but none of its steps replayed one at a time");
+}
+
 // `n` steps of size dt from step index `first` (time t0 + first*dt), checked.
 template <class Stepper, class State, class T>
 void checked_steps(Stepper& s, State& x, State& checkpoint, T t0, T dt, std::size_t first, std::size_t n,
@@ -127,21 +145,19 @@ void checked_steps(Stepper& s, State& x, State& checkpoint, T t0, T dt, std::siz
         const std::size_t m = std::min(check_every, n - done);
         checkpoint = x;
         advance(s, x, t0, dt, first + done, m, first + done > 0);
-        if (!is_finite(x)) {
-            x = checkpoint;  // replay one step at a time to find the first bad step
-            for (std::size_t j = 0; j < m; ++j) {
-                State before = x;
-                one_step(s, x, t0 + T(first + done + j) * dt, dt);
-                if (!is_finite(x)) {
-                    x = before;
-                    const std::size_t bad = first + done + j + 1;
-                    const T t_bad = t0 + T(bad - 1) * dt;
-                    throw blow_up(bad, static_cast<long double>(primal(t_bad)), static_cast<long double>(primal(dt)),
-                                  "; the state is left at t = " + number(t_bad));
-                }
-            }
-        }
+        if (!is_finite(x)) replay_to_blow_up(s, x, checkpoint, t0, dt, first + done, m);
         done += m;
+    }
+}
+
+// integrate_until's last, shortened step, out of line: it runs once a run.
+template <class Stepper, class State, class T>
+[[gnu::noinline]] void short_last_step(Stepper& s, State& x, T t, T rest, std::size_t n) {
+    State last = x;
+    one_step(s, x, t, rest);
+    if (!is_finite(x)) {
+        x = last;
+        throw blow_up(n + 1, static_cast<long double>(primal(t)), static_cast<long double>(primal(rest)));
     }
 }
 
@@ -198,7 +214,7 @@ run_summary integrate_steps(Stepper& stepper, typename Stepper::state_type& x, t
     if (!is_finite(x)) throw invalid_argument("integrate_steps: the initial state is not finite; expected finite q and p");
     const auto f0 = detail::forces(stepper);
     const auto v0 = detail::velocities(stepper);
-    constexpr bool observed = !std::is_same_v<std::decay_t<Observer>, no_observer>;
+    const bool observed = detail::observing(observer);
     const std::size_t check_every = detail::check_interval(stepper, options.check_every);
     const std::size_t cadence = observed ? options.observe_every : check_every;
     if (options.first_step > n || options.first_step % cadence != 0)
@@ -207,14 +223,13 @@ run_summary integrate_steps(Stepper& stepper, typename Stepper::state_type& x, t
                                (observed ? " (observe_every)" : " (check_every)") +
                                " not beyond the last step, so that the steps group as in the uninterrupted run");
     State checkpoint = x;
-    if constexpr (observed)
-        if (options.first_step == 0) observer(std::as_const(x), t0);
+    if (observed && options.first_step == 0) observer(std::as_const(x), t0);
     std::size_t done = options.first_step;
     while (done < n) {
         const std::size_t m = observed ? std::min(options.observe_every, n - done) : n - done;
         detail::checked_steps(stepper, x, checkpoint, t0, dt, done, m, check_every);
         done += m;
-        if constexpr (observed) observer(std::as_const(x), t0 + T(done) * dt);
+        if (observed) observer(std::as_const(x), t0 + T(done) * dt);
     }
     return {n - options.first_step, static_cast<double>(primal(t0 + T(n) * dt)), detail::forces(stepper) - f0,
             detail::velocities(stepper) - v0};
@@ -226,20 +241,14 @@ run_summary integrate_until(Stepper& stepper, typename Stepper::state_type& x, t
                             typename Stepper::scalar t_end, typename Stepper::scalar dt, Observer&& observer = {},
                             run_options options = {}) {
     using T = typename Stepper::scalar;
-    using State = typename Stepper::state_type;
     const auto [n, rest] = detail::until_plan(t0, t_end, dt, "integrate_until");
     const auto f0 = detail::forces(stepper);
     const auto v0 = detail::velocities(stepper);
     run_summary r = integrate_steps(stepper, x, t0, dt, n, observer, options);
     if (rest > T(0)) {
-        State last = x;
-        detail::one_step(stepper, x, t0 + T(n) * dt, rest);
-        if (!is_finite(x)) {
-            x = last;
-            throw blow_up(n + 1, static_cast<long double>(primal(t0 + T(n) * dt)), static_cast<long double>(primal(rest)));
-        }
+        detail::short_last_step(stepper, x, t0 + T(n) * dt, rest, n);
         ++r.steps;
-        if constexpr (!std::is_same_v<std::decay_t<Observer>, no_observer>) observer(std::as_const(x), t_end);
+        if (detail::observing(observer)) observer(std::as_const(x), t_end);
     }
     r.force_evaluations = detail::forces(stepper) - f0;
     r.velocity_evaluations = detail::velocities(stepper) - v0;

@@ -265,8 +265,7 @@ run_summary integrate_to_time(Stepper& stepper, phase_space<S, D>& X, S t_end, S
                 });
             }
             ++r.steps;
-            if constexpr (!std::is_same_v<std::decay_t<Observer>, no_observer>)
-                observer(std::as_const(X), physical_time(X));
+            if (detail::observing(observer)) observer(std::as_const(X), physical_time(X));
         }
     }
     r.steps -= options.first_step;
