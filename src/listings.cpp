@@ -33,6 +33,8 @@ std::vector<std::string> compiled_names(const system_entry& s) {
         for (std::size_t i = 0; i < classic_method_count; ++i)
             if (p.compiled.classic.has(i)) names.push_back(classic_at(i).name);
     }
+    const bool splits = p.compiled.kinds.has(method_kind::table) || p.compiled.kinds.has(method_kind::logh);
+    if (splits && p.compiled.extrapolated && p.form.separable_hamiltonian) names.push_back("extrapolated");
     return names;
 }
 }  // namespace

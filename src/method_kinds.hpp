@@ -290,6 +290,7 @@ inline constexpr classic_set all_classic = [] {
 struct compiled_methods {
     kind_set kinds = all_kinds;
     classic_set classic = all_classic;
+    bool extrapolated = true;  // the table and LogH kinds' extrapolated(...) variants
     constexpr bool has(const method_kind kind, std::size_t classic_index) const {
         return kinds.has(kind) && (kind != method_kind::classic || classic.has(classic_index));
     }
@@ -321,6 +322,12 @@ struct method_spec {
     // charged: cartesian_split(<table>) and cylindrical_split(<table>) set parameters.scheme and coefficients.
     std::optional<double> omega;        // tao(<table>, omega = W); unset: from the problem's scales
 };
+
+// Whether a method runs on what is compiled: its kind, its classic stepper,
+// its extrapolation.
+constexpr bool compiled_has(const compiled_methods& c, const method_spec& m) {
+    return c.has(m.kind, m.classic) && (m.extrapolation_columns == 0 || c.extrapolated);
+}
 
 // Whether the method is swept over tolerances (its step size controlled)
 // instead of step sizes.

@@ -112,7 +112,7 @@ public:
 
     run_result operator()(const method_spec& m, const run_request& rq, double t0, double t_end,
                           const std::vector<double>& x0) const {
-        if (!Own.has(m.kind, m.classic) && generic_) return generic_(m, rq, t0, t_end, x0);
+        if (!compiled_has(Own, m) && generic_) return generic_(m, rq, t0, t_end, x0);
         run_result r;
         if (rq.observed) {
             observed_run(m, rq, t0, t_end, x0, r);
@@ -253,6 +253,7 @@ std::function<std::vector<double>(double)> exact_flow(H h, X x0) {
 struct compiled {
     kind_set kinds{};
     classic_set classic{};  // with kinds holding `classic`: all of them
+    bool extrapolated = false;  // extrapolated(...) tables, with the table or LogH kind
     bool ensembles = false;
 };
 
@@ -273,6 +274,7 @@ constexpr compiled_methods compiled_for(compiled named) {
             c.kinds = c.kinds | kind_set{method_kind::classic};
             c.classic = named.classic;
         }
+        c.extrapolated = named.extrapolated;
         return c;
     } else {
         return compiled_methods{};
@@ -293,7 +295,8 @@ constexpr bool runs_any() {
 // and, when it has one, its exact solution from x0.
 // Dim: the degrees of freedom when fixed (small systems), Eigen::Dynamic otherwise.
 // A general H(q, p) that does not split runs as general_system<H>.
-template <int Dim = Eigen::Dynamic, compiled Own = compiled{.kinds = all_kinds, .ensembles = true}, class Sys>
+template <int Dim = Eigen::Dynamic, compiled Own = compiled{.kinds = all_kinds, .extrapolated = true, .ensembles = true},
+          class Sys>
 problem model(Sys sys, std::vector<double> x0, std::function<std::vector<double>(double)> exact = nullptr) {
     using V = phase_space<double>::vector;
     if constexpr (general_hamiltonian<Sys, V> && !separable_hamiltonian<Sys, V> && !detail::is_general_system<Sys>) {

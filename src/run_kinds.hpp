@@ -21,6 +21,11 @@
 
 namespace sympl::app::detail {
 
+// A method the runner should have handed to the generic path (model.hpp).
+[[noreturn]] inline void not_compiled(const method_spec& m) {
+    throw std::logic_error("method '" + m.name + "': not compiled for the system, yet it reached its runner");
+}
+
 // A separable Hamiltonian's table, or a damped, driven system's (its drifts
 // damped exactly, conformal_splitting.hpp); extrapolated and compensated
 // tables need the separable stepper (requirement_of refuses them before).
@@ -32,9 +37,13 @@ struct run_kind<method_kind::table> {
         if constexpr (separable_hamiltonian<Sys, typename C::State::vector>) {
             splitting_stepper<Sys, typename C::State> stepper(c.sys, *c.m.coefficients, {c.m.compensated});
             constexpr bool extrapolated_resumable = !*entry_of(method_kind::table).extrapolated_not_resumable;
-            if (c.m.extrapolation_columns > 0)
-                return c.template drive<extrapolated_resumable>(
-                    extrapolation_stepper(std::move(stepper), c.m.extrapolation_columns));
+            if (c.m.extrapolation_columns > 0) {
+                if constexpr (C::own.extrapolated)
+                    return c.template drive<extrapolated_resumable>(
+                        extrapolation_stepper(std::move(stepper), c.m.extrapolation_columns));
+                else
+                    not_compiled(c.m);
+            }
             return c.drive(std::move(stepper));
         } else {
             return c.drive(conformal_stepper<Sys, typename C::State>(c.sys, *c.m.coefficients));
@@ -59,8 +68,12 @@ struct run_kind<method_kind::logh> {
         using Sys = typename C::system;
         using Extended = phase_space<double, extended_dimension(C::dimension)>;
         splitting_stepper<logh<Sys>, Extended> inner(logh<Sys>{c.sys}, *c.m.coefficients);
-        if (c.m.extrapolation_columns > 0)
-            return in_fictitious_time(c, extrapolation_stepper(std::move(inner), c.m.extrapolation_columns));
+        if (c.m.extrapolation_columns > 0) {
+            if constexpr (C::own.extrapolated)
+                return in_fictitious_time(c, extrapolation_stepper(std::move(inner), c.m.extrapolation_columns));
+            else
+                not_compiled(c.m);
+        }
         return in_fictitious_time(c, std::move(inner));
     }
 
@@ -122,8 +135,7 @@ struct run_kind<method_kind::classic> {
         if constexpr (C::own.classic.has(I))
             return one<I>(c);
         else
-            throw std::logic_error("method '" + c.m.name +
-                                   "': a classic stepper not compiled for the system reached its runner");
+            not_compiled(c.m);
     }
 
     template <std::size_t I, class C>
@@ -154,7 +166,7 @@ bool meets_at_run_time(needs n) {
 template <method_kind K, class C>
 steps_and_forces run_where_met(const C& c) {
     if constexpr (!C::own.kinds.has(K))
-        throw std::logic_error("method '" + c.m.name + "': a kind not compiled for the system reached its runner");
+        not_compiled(c.m);
     else if constexpr (meets<entry_of(K).requirement, typename C::system>())
         return run_kind<K>::run(kind_context<K, C>{c});
     else

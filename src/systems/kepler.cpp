@@ -21,7 +21,7 @@ system_entry kepler_entry() {
         .exact = true,
         .build = [](const parameter_values& v) {
             using enum method_kind;
-            constexpr compiled own{.kinds = {table, logh, dprkn, odeint}, .classic = {"rk4"}};
+            constexpr compiled own{.kinds = {table, logh, dprkn, odeint}, .classic = {"rk4"}, .extrapolated = true};
             const double e = v.at("eccentricity"), L = v.at("scale"), mu = v.at("mu");
             if (mu != 1 && L != 1)
                 throw invalid_argument("kepler: mu = " + shortest(mu) + " and scale = " + shortest(L) +

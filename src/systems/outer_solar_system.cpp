@@ -12,7 +12,7 @@ system_entry outer_solar_system_entry() {
         .description = "Sun and the five outer planets (Hairer, Lubich & Wanner, GNI Table 2.2); days, AU",
         .build = [](const parameter_values&) {
             using enum method_kind;
-            constexpr compiled own{.kinds = {table, logh, odeint, wisdom_holman}, .classic = {"rk4"}};
+            constexpr compiled own{.kinds = {table, logh, odeint, wisdom_holman}, .classic = {"rk4"}, .extrapolated = true};
             const hamiltonians::outer_solar_system h{};
             return model<hamiltonians::outer_solar_system::dimension, own>(h, stacked(h.initial_state()));
         },
