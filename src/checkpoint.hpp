@@ -44,7 +44,10 @@ struct checkpoint_record {
 
 // 3: a wh(...) run's carried list holds its test particles and their MEGNO
 // state, and odeint_bulirsch_stoer's Boost's order and step history.
-inline constexpr int checkpoint_format = 3;
+// 4: a controlled RKN pair's own list follows the controller's state without
+// its length before it (every run's list: its own fields, then the
+// stepper's, run_context.hpp).
+inline constexpr int checkpoint_format = 4;
 
 // FNV-1a, 64 bits, as 16 hex digits: the scene's identity and the file's checksum.
 std::string fnv1a_hex(const std::string& bytes);

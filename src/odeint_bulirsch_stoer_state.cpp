@@ -9,6 +9,8 @@
 #include "odeint_bulirsch_stoer_state.hpp"
 
 #include <cmath>
+#include <type_traits>
+#include <vector>
 
 namespace sympl::app {
 
@@ -44,31 +46,41 @@ template struct bulirsch_stoer_member_door<bs_proposed_step_tag, &bulirsch_stoer
 
 }  // namespace
 
-void write_bulirsch_stoer_history(const bulirsch_stoer_vector& s, sympl::detail::carried_writer<double> out) {
-    out.number(double(s.*member_pointer(bs_order_tag{})));
-    out.flag(s.*member_pointer(bs_first_tag{}));
-    out.flag(s.*member_pointer(bs_rejected_tag{}));
-    out.number(s.*member_pointer(bs_proposed_step_tag{}));
+namespace {
+// The four fields in order; reading, they are checked, the stepper's tables
+// sized by a try on a zero field, and then they are set.
+template <class History, class List>
+void walk(History& h, List& l) {
+    constexpr bool reading = !std::is_const_v<History>;
+    bulirsch_stoer_vector& s = h.stepper;  // a reference member: the writer reads it only
+    double order = double(s.*member_pointer(bs_order_tag{}));
+    bool first = s.*member_pointer(bs_first_tag{}), rejected = s.*member_pointer(bs_rejected_tag{});
+    double proposed_step = s.*member_pointer(bs_proposed_step_tag{});
+    l.number(order);
+    l.flag(first);
+    l.flag(rejected);
+    l.number(proposed_step);
+    if constexpr (reading) {
+        // Boost keeps the order within 2 .. k_max - 1 (4 after a reset).
+        const double highest = double(bulirsch_stoer_vector::m_k_max - 1);
+        l.check((order >= 2 && order <= highest) && double(std::size_t(order)) == order,
+                "holds a Boost.Odeint bulirsch_stoer order outside 2..7");
+        l.check(std::isfinite(proposed_step), "holds a Boost.Odeint bulirsch_stoer step that is not finite");
+        std::vector<double> y(h.size, 0.0);
+        double t = 0, dt = 1;
+        s.try_step([](const std::vector<double>&, std::vector<double>& dydt, double) { dydt.assign(dydt.size(), 0.0); },
+                   y, t, dt);
+        s.*member_pointer(bs_order_tag{}) = std::size_t(order);
+        s.*member_pointer(bs_first_tag{}) = first;
+        s.*member_pointer(bs_rejected_tag{}) = rejected;
+        s.*member_pointer(bs_proposed_step_tag{}) = proposed_step;
+    }
 }
+}  // namespace
 
-void restore_bulirsch_stoer_history(bulirsch_stoer_vector& s, std::size_t size,
-                                    sympl::detail::carried_reader<double>& in) {
-    const double order = in.number();
-    const bool first = in.flag(), rejected = in.flag();
-    const double proposed_step = in.number();
-    // Boost keeps the order within 2 .. k_max - 1 (4 after a reset).
-    const double highest = double(bulirsch_stoer_vector::m_k_max - 1);
-    if (!(order >= 2 && order <= highest) || double(std::size_t(order)) != order)
-        in.refuse("holds a Boost.Odeint bulirsch_stoer order outside 2..7");
-    if (!std::isfinite(proposed_step)) in.refuse("holds a Boost.Odeint bulirsch_stoer step that is not finite");
-    std::vector<double> y(size, 0.0);
-    double t = 0, dt = 1;
-    s.try_step([](const std::vector<double>&, std::vector<double>& dydt, double) { dydt.assign(dydt.size(), 0.0); },
-               y, t, dt);
-    s.*member_pointer(bs_order_tag{}) = std::size_t(order);
-    s.*member_pointer(bs_first_tag{}) = first;
-    s.*member_pointer(bs_rejected_tag{}) = rejected;
-    s.*member_pointer(bs_proposed_step_tag{}) = proposed_step;
+void bulirsch_stoer_history::fields(const bulirsch_stoer_history& h, sympl::detail::carried_writer<double>& l) {
+    walk(h, l);
 }
+void bulirsch_stoer_history::fields(bulirsch_stoer_history& h, sympl::detail::carried_reader<double>& l) { walk(h, l); }
 
 }  // namespace sympl::app

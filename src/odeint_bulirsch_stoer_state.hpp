@@ -24,15 +24,22 @@ namespace sympl::app {
 
 using bulirsch_stoer_vector = boost::numeric::odeint::bulirsch_stoer<std::vector<double>>;
 
-// Appends its order, first-step flag, rejected flag and proposed step.
-void write_bulirsch_stoer_history(const bulirsch_stoer_vector& stepper, sympl::detail::carried_writer<double> out);
-
-// Reads the four back into a stepper for states of `size` numbers. The
-// stepper first makes one try on a zero field (its first try sizes its
-// tables and resets the four, which would undo a restore made before it);
-// an order outside 2..7, a flag not 0 or 1 or a step that is not finite is
-// refused.
-void restore_bulirsch_stoer_history(bulirsch_stoer_vector& stepper, std::size_t size,
-                                    sympl::detail::carried_reader<double>& in);
+// Its history as a part of a carried list (core/carried_state.hpp): the
+// order, the first-step flag, the rejected flag and the proposed step. Read
+// back into a stepper for states of `size` numbers, the stepper first makes
+// one try on a zero field (its first try sizes its tables and resets the
+// four, which would undo a restore made before it); an order outside 2..7,
+// a flag not 0 or 1 or a step that is not finite is refused.
+struct bulirsch_stoer_history {
+    bulirsch_stoer_vector& stepper;
+    std::size_t size;
+    template <class Self, class List>
+    static void carried_fields(Self& self, List& l) {
+        fields(self, l);
+    }
+    // The one list, walked by both (odeint_bulirsch_stoer_state.cpp).
+    static void fields(const bulirsch_stoer_history& h, sympl::detail::carried_writer<double>& l);
+    static void fields(bulirsch_stoer_history& h, sympl::detail::carried_reader<double>& l);
+};
 
 }  // namespace sympl::app

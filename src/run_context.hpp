@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <functional>
 #include <span>
+#include <string>
 #include <stdexcept>
 #include <type_traits>
 #include <utility>
@@ -168,44 +169,48 @@ struct kind_context : Context {
     }
 };
 
-// What a checkpoint holds of a stepper, for every kind's checkpointed run:
-// restored from the record resumed from, saved every rq.checkpoint.every_steps
-// steps (but at t_end). A stepper's memory() (splitting_stepper) goes into
-// the record's memory, its carried() (wisdom_holman_stepper, tao_stepper,
-// processed_stepper, the RKN pairs) into its carried list, unless the kind's
-// run lays that list out itself (LogH's extended state, a controller's
-// state); the counters count on from the record's.
-template <class Context, class Stepper>
+// What a run carries beyond its stepper's own list: nothing (fixed steps).
+struct nothing_more {
+    template <class Self, class List>
+    static void carried_fields(Self&, List&) {}
+};
+
+// What a checkpoint holds of a run, for every kind: the stepper's memory()
+// (splitting_stepper) in the record's memory, and one carried list: first
+// the fields the run carries itself (`more`, a type with carried_fields:
+// LogH's extended state, a controller's state, Odeint's time and step), then
+// the stepper's own carried() list where it has one (wisdom_holman_stepper,
+// tao_stepper, processed_stepper, the RKN pairs). Restored from the record
+// resumed from; saved every rq.checkpoint.every_steps steps (but at t_end);
+// the counters count on from the record's.
+template <class Context, class Stepper, class More = nothing_more>
 class checkpoint_keeper {
 public:
     static constexpr bool has_memory = requires(const Stepper& s) { s.memory(); };
     static constexpr bool has_carried = requires(const Stepper& s) { s.carried(); };
 
-    checkpoint_keeper(const Context& c, Stepper& stepper) : c_(c), stepper_(stepper) {}
+    checkpoint_keeper(const Context& c, Stepper& stepper, More& more) : c_(c), stepper_(stepper), more_(more) {}
 
-    // The record the run resumes from, the stepper restored from it (nullptr:
-    // the run starts at t0); `restore_carried` takes the carried list.
-    template <class RestoreCarried>
-    const checkpoint_record* restore(RestoreCarried&& restore_carried) {
+    // The record the run resumes from, the stepper and `more` restored from
+    // it (nullptr: the run starts at t0).
+    const checkpoint_record* restore() {
         const checkpoint_record* from = c_.rq.checkpoint.resume;
         if (!from) return nullptr;
         if constexpr (has_memory) stepper_.restore(from_record<typename Stepper::state_type::vector>(from->memory));
-        restore_carried(std::span<const double>(from->carried));
+        const std::string who = "checkpoint of '" + c_.m.name + "'";
+        sympl::detail::carried_reader<double> r{from->carried, who.c_str()};
+        r.part(more_);
+        if constexpr (has_carried) stepper_.restore_carried(r.rest());
+        r.done();
         forces_before_ = from->memory.force_evaluations;
         velocities_before_ = from->memory.velocity_evaluations;
         done_ = from->step;
         return from;
     }
-    const checkpoint_record* restore() {
-        return restore([&](std::span<const double> carried) {
-            if constexpr (has_carried) stepper_.restore_carried(carried);
-        });
-    }
 
-    // After each step to time t with the (physical) state y: a checkpoint when
-    // one is due, its carried list from `carried`.
-    template <class State, class Carried>
-    void after_step(const State& y, double t, Carried&& carried) {
+    // After each step to time t with the (physical) state y: a checkpoint when one is due.
+    template <class State>
+    void after_step(const State& y, double t) {
         const std::size_t every = c_.rq.checkpoint.every_steps;
         if (every == 0 || ++done_ % every != 0 || t == c_.t_end) return;
         checkpoint_record record;
@@ -218,15 +223,10 @@ public:
             record.memory.force_evaluations = forces_before_ + sympl::detail::forces(stepper_);
             record.memory.velocity_evaluations = velocities_before_ + sympl::detail::velocities(stepper_);
         }
-        record.carried = carried();
+        sympl::detail::carried_writer<double> w{record.carried};
+        w.part(std::as_const(more_));
+        if constexpr (has_carried) w.values(stepper_.carried());
         c_.rq.checkpoint.save(record);
-    }
-    template <class State>
-    void after_step(const State& y, double t) {
-        after_step(y, t, [&] {
-            if constexpr (has_carried) return std::vector<double>(stepper_.carried());
-            else return std::vector<double>{};
-        });
     }
 
     std::uint64_t forces_before() const { return forces_before_; }
@@ -234,36 +234,50 @@ public:
 private:
     const Context& c_;
     Stepper& stepper_;
+    More& more_;
     std::uint64_t forces_before_ = 0, velocities_before_ = 0;
     std::size_t done_ = 0;
 };
 
-// The observed run, with a checkpoint every rq.checkpoint.every_steps steps
-// (none when 0), or its continuation from rq.checkpoint.resume: the driver
-// resumes at the checkpoint's step (times from the integer index), the
-// stepper from what it carried, so the rest of the run is bit for bit the
-// uninterrupted one.
-template <class Context, class Stepper>
-steps_and_forces checkpointed(const Context& c, Stepper& stepper) {
+// The observed run of every kind, with a checkpoint every
+// rq.checkpoint.every_steps steps (none when 0), or its continuation from
+// rq.checkpoint.resume: the state, the stepper and `more` restored from the
+// record, then drive(observer, from, keeper), the kind's own driver from the
+// record's step (nullptr: from t0), returning the whole run's steps and
+// forces. Its observer is the context's, called at t0 unless resumed (the
+// record's step was observed before), then after every step, each step
+// saving a checkpoint when one is due; so the rest of a resumed run is bit
+// for bit the uninterrupted one.
+template <class Context, class Stepper, class More, class Drive>
+steps_and_forces checkpointed_run(const Context& c, Stepper& stepper, More& more, Drive&& drive) {
     using State = typename Context::State;
-    using observer = typename Context::observer;
-    if (!c.observed()) {  // timed: nothing saved or restored
-        const run_summary s = integrate_until(stepper, c.x, c.t0, c.t_end, c.rq.dt, observer{});
-        return {s.steps, s.force_evaluations};
-    }
-    checkpoint_keeper<Context, Stepper> keeper(c, stepper);
-    run_options options;
-    if (const checkpoint_record* from = keeper.restore()) {
-        c.x = to_state<Context::dimension>(from->state);
-        options.first_step = from->step;
-    }
-    bool at_start = options.first_step == 0;  // the observer's first call is t0, not a step
+    checkpoint_keeper<Context, Stepper, More> keeper(c, stepper, more);
+    const checkpoint_record* from = keeper.restore();
+    if (from) c.x = to_state<Context::dimension>(from->state);
+    bool at_start = !from;
     const auto observe = [&](const State& y, double t) {
         c.observe(y, t);
         if (!std::exchange(at_start, false)) keeper.after_step(y, t);
     };
-    const run_summary s = integrate_until(stepper, c.x, c.t0, c.t_end, c.rq.dt, observer(observe), options);
-    return {options.first_step + s.steps, keeper.forces_before() + s.force_evaluations};
+    return drive(typename Context::observer(observe), from, std::as_const(keeper));
+}
+
+// A sympl stepper at fixed steps, timed (nothing saved or restored) or
+// observed through checkpointed_run.
+template <class Context, class Stepper>
+steps_and_forces checkpointed(const Context& c, Stepper& stepper) {
+    using observer = typename Context::observer;
+    if (!c.observed()) {
+        const run_summary s = integrate_until(stepper, c.x, c.t0, c.t_end, c.rq.dt, observer{});
+        return {s.steps, s.force_evaluations};
+    }
+    nothing_more nothing;
+    return checkpointed_run(c, stepper, nothing, [&](observer observe, const checkpoint_record* from, const auto& keeper) {
+        run_options options;
+        if (from) options.first_step = from->step;
+        const run_summary s = integrate_until(stepper, c.x, c.t0, c.t_end, c.rq.dt, observe, options);
+        return steps_and_forces{options.first_step + s.steps, keeper.forces_before() + s.force_evaluations};
+    });
 }
 
 // How a kind runs: run_kind<K>::run(context), one per row of method_kind_entries.

@@ -77,43 +77,41 @@ struct run_kind<method_kind::logh> {
         return in_fictitious_time(c, std::move(inner));
     }
 
-    // Checkpointed, the record's carried list is the extended state X (the
-    // time and its momentum with q and p), the stepper's memory its memory.
+    // What the run carries beyond the stepper's memory: the extended state X
+    // (the time and its momentum with q and p).
+    template <class Extended>
+    struct extended_state {
+        Extended& X;
+        template <class Self, class List>
+        static void carried_fields(Self& self, List& l) {
+            l.values(self.X.q);
+            l.values(self.X.p);
+        }
+    };
+
+    // integrate_to_time observes the steps only: t0 is observed here.
     template <class C, class Stepper>
     static steps_and_forces in_fictitious_time(const C& c, Stepper stepper) {
         using Extended = typename Stepper::state_type;
-        Extended X = to_extended(c.sys, c.x, c.t0);
         using observer = observer_ref<Extended, double>;
-        run_summary s;
+        Extended X = to_extended(c.sys, c.x, c.t0);
+        steps_and_forces done;
         if (c.observed()) {
-            const bool checkpointed = c.rq.checkpoint.every_steps > 0;
-            checkpoint_keeper<C, Stepper> keeper(c, stepper);
-            time_transformed_options options;
-            const auto restore_extended = [&](std::span<const double> carried) {
-                if (carried.size() != std::size_t(2 * X.size()))
-                    throw error("checkpoint of '" + c.m.name + "': an extended state of " +
-                                std::to_string(carried.size()) + " numbers; expected " + std::to_string(2 * X.size()) +
-                                "; not resumed from");
-                X = from_stacked<Extended>(std::vector<double>(carried.begin(), carried.end()));
-            };
-            if (const checkpoint_record* from = checkpointed ? keeper.restore(restore_extended) : nullptr) {
-                options.first_step = from->step;
-            } else {
-                c.observe(std::as_const(c.x), c.t0);
-            }
-            const auto observe = [&](const Extended& y, double time) {
-                const auto x = physical_state(y);
-                c.observe(x, time);
-                if (checkpointed) keeper.after_step(x, time, [&] { return to_vector(y); });
-            };
-            s = integrate_to_time(stepper, X, c.t_end, c.rq.dt, observer(observe), {}, options);
-            s.steps += options.first_step;
-            s.force_evaluations += keeper.forces_before();
+            extended_state<Extended> more{X};
+            done = checkpointed_run(c, stepper, more, [&](auto observe, const checkpoint_record* from, const auto& keeper) {
+                time_transformed_options options;
+                if (from) options.first_step = from->step;
+                else observe(std::as_const(c.x), c.t0);
+                const auto physical = [&](const Extended& y, double time) { observe(physical_state(y), time); };
+                const run_summary s = integrate_to_time(stepper, X, c.t_end, c.rq.dt, observer(physical), {}, options);
+                return steps_and_forces{options.first_step + s.steps, keeper.forces_before() + s.force_evaluations};
+            });
         } else {  // the same driver, nothing observed
-            s = integrate_to_time(stepper, X, c.t_end, c.rq.dt, observer{}, {}, {});
+            const run_summary s = integrate_to_time(stepper, X, c.t_end, c.rq.dt, observer{}, {}, {});
+            done = {s.steps, s.force_evaluations};
         }
         c.x = physical_state(X);
-        return {s.steps, s.force_evaluations};
+        return done;
     }
 };
 

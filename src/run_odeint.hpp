@@ -49,19 +49,23 @@ OdeState to_odeint(const state_of<Dim>& x) {
 // that stopped making progress, so its observer (called at t0 and after each
 // step) checks them and throws, which ends integrate_adaptive; Odeint's own
 // stop, 500 rejected step sizes in a row, is reported in the same words. The
-// program's observer reaches the run type-erased (nullptr: not observed), so
+// program's observer reaches the run type-erased (empty: not observed), so
 // each Odeint stepper is compiled once per system, not once per observer; a
 // call per step costs nothing next to an Odeint step.
 template <class Sys, int Dim>
 struct odeint_run {
     using State = state_of<Dim>;
     using OdeState = odeint_state<Dim>;
+    using observer = observer_ref<State, double>;
+    static constexpr int dimension = Dim;
     const Sys& sys;
     const method_spec& m;
     const run_request& rq;
     double t0, t_end;
     State& x;
-    const std::function<void(const State&, double)>* observe;
+    observer observe;
+
+    bool observed() const { return observe.observing(); }
 
     // What integrate_adaptive's observer has seen: the accepted steps and the
     // time the last one ended at.
@@ -75,11 +79,12 @@ struct odeint_run {
     // accepted step: a non-finite state names its step, the time the step
     // started from and its size (blow_up, as sympl's drivers say it); a step
     // of 1e-14 of the span or less, short of t_end, is one the run would
-    // never finish with; then the program's observer sees the state.
-    auto checking_observer(progress& at) const {
-        return [this, &at](const auto& y, double t) {
+    // never finish with; then `to` (the program's observer, or the
+    // checkpointed run's around it) sees the state.
+    auto checking_observer(progress& at, observer to) const {
+        return [this, &at, to](const auto& y, double t) {
             if (!std::exchange(at.started, true)) {
-                if (observe) (*observe)(std::as_const(x), t0);
+                if (to.observing()) to(std::as_const(x), t0);
                 return;
             }
             const double h = t - at.t;
@@ -94,11 +99,11 @@ struct odeint_run {
                                         step, at.t);
             at.steps = step;
             at.t = t;
-            if (observe) (*observe)(to_state<Dim>(y), t);
+            if (to.observing()) to(to_state<Dim>(y), t);
         };
     }
 
-    bool checkpointed() const { return observe && rq.checkpoint.every_steps; }
+    bool checkpointed() const { return observed() && rq.checkpoint.every_steps; }
 
     template <class Stepper>
     steps_and_forces run(Stepper stepper, double dt) const {
@@ -116,13 +121,14 @@ struct odeint_run {
         // timed runs see Odeint's loop as a user's would).
         constexpr bool controlled =
             std::is_same_v<typename Stepper::stepper_category, odeint::controlled_stepper_tag>;
-        const bool every_step = controlled || observe;
+        const bool every_step = controlled || observed();
         progress at{.t = t0};
         std::size_t steps = 0;
         try {
             if constexpr (!controlled)
                 if (!every_step) steps = odeint::integrate_adaptive(stepper, f, y, t0, t_end, dt);
-            if (every_step) steps = odeint::integrate_adaptive(stepper, f, y, t0, t_end, dt, checking_observer(at));
+            if (every_step)
+                steps = odeint::integrate_adaptive(stepper, f, y, t0, t_end, dt, checking_observer(at, observe));
         } catch (const odeint::step_adjustment_error&) {
             rejected_in_a_row(at);
         }
@@ -140,22 +146,37 @@ struct odeint_run {
                                 at.steps + 1, at.t);
     }
 
+    // What a checkpointed Odeint run carries: its time, next step size and
+    // evaluations, and bulirsch_stoer's history (odeint_bulirsch_stoer_state.hpp).
+    template <class Stepper>
+    struct odeint_carried {
+        double& t;
+        double& dt;
+        std::uint64_t& evaluations;
+        Stepper& stepper;
+        std::size_t size;
+        template <class Self, class List>
+        static void carried_fields(Self& self, List& l) {
+            l.number(self.t), l.number(self.dt);
+            l.whole(self.evaluations, "holds a bad count of evaluations");
+            if constexpr (std::is_same_v<Stepper, bulirsch_stoer_vector>) {
+                bulirsch_stoer_history history{self.stepper, self.size};
+                l.part(history);
+            }
+        }
+    };
+
     // Checkpointed: Odeint's loops driven here as integrate_adaptive drives
     // them (integrate_const's steps and a last one to t_end; try_step until
     // accepted), the same calls on the same times, so that a run resumed after
-    // step k from its state, time and next step size (the record's carried
-    // list, with the evaluations) goes on bit for bit. dopri5's derivative at
-    // the state (first same as last) is evaluated again at the first step
-    // after a resume, on the same state: the same bits, counted once. The
-    // first observation after a resume is the checkpoint's, not repeated.
-    // bulirsch_stoer's order and step history ride in the carried list too
-    // (odeint_bulirsch_stoer_state.hpp).
+    // step k from its state, time and next step size (with the evaluations)
+    // goes on bit for bit. dopri5's derivative at the state (first same as
+    // last) is evaluated again at the first step after a resume, on the same
+    // state: the same bits, counted once. The first observation after a
+    // resume is the checkpoint's, not repeated.
     template <class Stepper>
     steps_and_forces run_checkpointed(Stepper stepper, double dt) const {
         using Y = typename Stepper::state_type;
-        constexpr bool bulirsch_stoer = std::is_same_v<Stepper, bulirsch_stoer_vector>;
-        constexpr bool controlled =
-            std::is_base_of_v<odeint::controlled_stepper_tag, typename Stepper::stepper_category>;
         constexpr bool fsal = [] {
             if constexpr (requires { typename Stepper::stepper_type::stepper_category; })
                 return std::is_same_v<typename Stepper::stepper_type::stepper_category,
@@ -164,72 +185,68 @@ struct odeint_run {
         }();
         odeint_workspace<double, Dim> w;
         const auto f = make_odeint_system<Dim>(sys, &w);
-        Y y = to_odeint<Dim, Y>(x);
-        checkpoint_keeper<odeint_run, Stepper> keeper(*this, stepper);
-        progress at{.t = t0};
         double t = t0;
-        std::size_t steps = 0;
-        const auto restore = [&](std::span<const double> carried) {
-            sympl::detail::carried_reader<double> r{carried, "checkpoint of a Boost.Odeint run"};
-            t = r.number(), dt = r.number();
-            w.evaluations = std::uint64_t(r.number()) - (fsal ? 1 : 0);
-            if constexpr (bulirsch_stoer) restore_bulirsch_stoer_history(stepper, y.size(), r);
-            r.done();
-        };
-        bool skip = false;  // the next observation is the checkpoint's
-        if (const checkpoint_record* from = keeper.restore(restore)) {
-            y = to_odeint<Dim, Y>(to_state<Dim>(from->state));
-            steps = from->step;
-            at = {.started = true, .steps = steps, .t = t};
-            skip = true;
-        }
-        const auto seen = checking_observer(at);
-        const auto observation = [&] {
-            if (std::exchange(skip, false)) return;
-            const bool start = !at.started;
-            seen(std::as_const(y), t);
-            if (!start) keeper.after_step(to_state<Dim>(y), t, [&] {
-                std::vector<double> carried{t, dt, double(w.evaluations)};
-                if constexpr (bulirsch_stoer) write_bulirsch_stoer_history(stepper, {carried});
-                return carried;
-            });
-        };
-        try {
-            if constexpr (controlled) {
-                odeint::failed_step_checker fail_checker;
-                while (odeint::detail::less_with_sign(t, t_end, dt)) {
-                    observation();
-                    if (odeint::detail::less_with_sign(t_end, static_cast<double>(t + dt), dt)) dt = t_end - t;
-                    odeint::controlled_step_result result;
-                    do {
-                        result = stepper.try_step(f, y, t, dt);
-                        fail_checker();
-                    } while (result == odeint::fail);
-                    fail_checker.reset();
-                    ++steps;
-                }
-                observation();
-            } else {
-                t = t0 + static_cast<double>(steps) * dt;
-                while (odeint::detail::less_eq_with_sign(static_cast<double>(t + dt), t_end, dt)) {
-                    observation();
-                    stepper.do_step(f, y, t, dt);
-                    ++steps;
-                    t = t0 + static_cast<double>(steps) * dt;
-                }
-                observation();
-                if (const double end = t0 + dt * static_cast<double>(steps); odeint::detail::less_with_sign(end, t_end, dt)) {
-                    stepper.do_step(f, y, end, t_end - end);
-                    ++steps;
-                    t = t_end;
-                    observation();
-                }
+        odeint_carried<Stepper> more{t, dt, w.evaluations, stepper, std::size_t(2 * x.q.size())};
+        return checkpointed_run(*this, stepper, more, [&](observer observe, const checkpoint_record* from, const auto&) {
+            Y y = to_odeint<Dim, Y>(x);  // the record's state when resumed
+            std::size_t steps = 0;
+            progress at{.t = t0};
+            bool skip = false;  // the next observation is the checkpoint's
+            if (from) {
+                if (fsal) w.evaluations -= 1;  // counted once (above)
+                steps = from->step;
+                at = {.started = true, .steps = steps, .t = t};
+                skip = true;
             }
-        } catch (const odeint::step_adjustment_error&) {
-            rejected_in_a_row(at);
+            const auto seen = checking_observer(at, observe);
+            const auto observation = [&] {
+                if (!std::exchange(skip, false)) seen(std::as_const(y), t);
+            };
+            try {
+                hand_loop(stepper, f, y, t, dt, steps, observation);
+            } catch (const odeint::step_adjustment_error&) {
+                rejected_in_a_row(at);
+            }
+            x = to_state<Dim>(y);
+            return steps_and_forces{steps, w.evaluations};
+        });
+    }
+
+    // Odeint's loops as integrate_adaptive runs them, from time t after
+    // `steps` steps, `observation` at the start and after every step.
+    template <class Stepper, class F, class Y, class Observation>
+    void hand_loop(Stepper& stepper, const F& f, Y& y, double& t, double& dt, std::size_t& steps,
+                   const Observation& observation) const {
+        if constexpr (std::is_base_of_v<odeint::controlled_stepper_tag, typename Stepper::stepper_category>) {
+            odeint::failed_step_checker fail_checker;
+            while (odeint::detail::less_with_sign(t, t_end, dt)) {
+                observation();
+                if (odeint::detail::less_with_sign(t_end, static_cast<double>(t + dt), dt)) dt = t_end - t;
+                odeint::controlled_step_result result;
+                do {
+                    result = stepper.try_step(f, y, t, dt);
+                    fail_checker();
+                } while (result == odeint::fail);
+                fail_checker.reset();
+                ++steps;
+            }
+            observation();
+        } else {
+            t = t0 + static_cast<double>(steps) * dt;
+            while (odeint::detail::less_eq_with_sign(static_cast<double>(t + dt), t_end, dt)) {
+                observation();
+                stepper.do_step(f, y, t, dt);
+                ++steps;
+                t = t0 + static_cast<double>(steps) * dt;
+            }
+            observation();
+            if (const double end = t0 + dt * static_cast<double>(steps); odeint::detail::less_with_sign(end, t_end, dt)) {
+                stepper.do_step(f, y, end, t_end - end);
+                ++steps;
+                t = t_end;
+                observation();
+            }
         }
-        x = to_state<Dim>(y);
-        return {steps, w.evaluations};
     }
 };
 
@@ -237,9 +254,7 @@ struct odeint_run {
 template <class C, class Run>
 steps_and_forces with_odeint(const C& c, Run run) {
     using R = odeint_run<typename C::system, C::dimension>;
-    std::function<void(const typename C::State&, double)> observe;
-    if (c.observed()) observe = c.observe;
-    return run(R{c.sys, c.m, c.rq, c.t0, c.t_end, c.x, c.observed() ? &observe : nullptr});
+    return run(R{c.sys, c.m, c.rq, c.t0, c.t_end, c.x, c.observe});
 }
 
 // One instantiation per system, whatever the observer: the member's stepper,

@@ -40,48 +40,38 @@ struct run_kind<method_kind::dprkn> {
         return checkpointed_control(c, stepper, control);  // observed or not, checkpoints asked or not
     }
 
+    // What a controlled run carries beyond the pair's own list: the
+    // controller's state (time, next step, last error, the summary so far).
+    struct controller {
+        controller_state<double>& state;
+        template <class Self, class List>
+        static void carried_fields(Self& self, List& l) {
+            controller_state<double>& s = self.state;
+            control_summary& m = s.summary;
+            l.number(s.t), l.number(s.dt), l.number(s.previous_error);
+            l.whole(m.accepted, "holds a bad count of accepted steps");
+            l.whole(m.rejected, "holds a bad count of rejected steps");
+            l.number(m.t), l.number(m.dt_smallest), l.number(m.dt_largest), l.number(m.largest_error);
+            l.whole(m.force_evaluations, "holds a bad count of force evaluations");
+        }
+    };
+
     // Every controlled run, timed or observed: observed, with a checkpoint
     // every rq.checkpoint.every_steps steps when that is not 0 (one driver
-    // compiled, not three). The record's carried list: the controller's state (time, next
-    // step, last error, the summary so far), then the pair's carried list.
+    // compiled).
     template <class C, class Stepper>
     static steps_and_forces checkpointed_control(const C& c, Stepper& stepper, const control_options& control) {
-        controller_state<double> state;
-        checkpoint_keeper<C, Stepper> keeper(c, stepper);
-        const auto restore = [&](std::span<const double> carried) {
-            sympl::detail::carried_reader<double> r{carried, "checkpoint of a controlled run"};
-            state.t = r.number(), state.dt = r.number(), state.previous_error = r.number();
-            control_summary& m = state.summary;
-            m.accepted = std::size_t(r.number()), m.rejected = std::size_t(r.number());
-            m.t = r.number(), m.dt_smallest = r.number(), m.dt_largest = r.number(), m.largest_error = r.number();
-            m.force_evaluations = std::uint64_t(r.number());
-            std::vector<double> pair;
-            r.numbers(pair);
-            r.done();
-            stepper.restore_carried(pair);
-        };
         using observer = typename C::observer;
+        controller_state<double> state;
         if (!c.observed()) {
             const control_summary s = integrate_controlled(stepper, c.x, c.t0, c.t_end, control, observer{}, state);
             return {s.accepted, s.force_evaluations};
         }
-        if (const checkpoint_record* from = keeper.restore(restore)) c.x = to_state<C::dimension>(from->state);
-        const auto carried = [&] {
-            std::vector<double> out;
-            sympl::detail::carried_writer<double> w{out};
-            const control_summary& m = state.summary;
-            for (double v : {state.t, state.dt, state.previous_error, double(m.accepted), double(m.rejected), m.t,
-                             m.dt_smallest, m.dt_largest, m.largest_error, double(m.force_evaluations)})
-                w.number(v);
-            w.numbers(stepper.carried());
-            return out;
-        };
-        const auto observe = [&](const typename C::State& y, double t) {
-            c.observe(y, t);
-            if (state.summary.accepted > 0) keeper.after_step(y, t, carried);  // not at t0
-        };
-        const control_summary s = integrate_controlled(stepper, c.x, c.t0, c.t_end, control, observer(observe), state);
-        return {s.accepted, s.force_evaluations};
+        controller more{state};
+        return checkpointed_run(c, stepper, more, [&](observer observe, const checkpoint_record*, const auto&) {
+            const control_summary s = integrate_controlled(stepper, c.x, c.t0, c.t_end, control, observe, state);
+            return steps_and_forces{s.accepted, s.force_evaluations};  // the summary counts the whole run
+        });
     }
 };
 

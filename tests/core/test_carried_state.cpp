@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <variant>
 #include <vector>
 
 #include <Eigen/Core>
@@ -16,6 +17,8 @@ namespace test_core_test_carried_state {  // one per file: the tests build in ba
 using namespace sympl;
 using detail::carried_reader;
 using detail::carried_writer;
+using detail::carried_list;
+using detail::restore_carried_list;
 
 TEST_CASE("carried state: numbers, flags and vectors read back as written, to the last bit") {
     std::vector<double> list;
@@ -95,6 +98,83 @@ TEST_CASE("carried state: a list cut short, too long, with a bad flag or a bad s
         CHECK_THROWS_WITH_AS(r.numbers(fixed), doctest::Contains("holds a vector of another size than the stepper's"),
                              invalid_argument);
     }
+}
+
+namespace {
+// A stepper's carried list described once: a flag, a number, a vector, ids,
+// a part of its own and a variant of parts.
+struct inner_a {
+    double x = 0;
+    template <class Self, class List>
+    static void carried_fields(Self& self, List& l) {
+        l.number(self.x);
+    }
+};
+struct inner_b {
+    std::vector<double> v;
+    template <class Self, class List>
+    static void carried_fields(Self& self, List& l) {
+        l.numbers(self.v);
+        l.check(self.v.size() <= 3, "holds more than 3 numbers in b");
+    }
+};
+struct outer {
+    bool loaded = false;
+    double dt = 0;
+    Eigen::VectorXd q;
+    std::vector<std::uint64_t> id;
+    inner_a a;
+    std::variant<inner_a, inner_b> which;
+    template <class Self, class List>
+    static void carried_fields(Self& self, List& l) {
+        l.flag(self.loaded);
+        l.number(self.dt);
+        l.numbers(self.q);
+        l.ids(self.id, "holds a bad id");
+        l.check(self.id.size() == std::size_t(self.q.size()), "holds an id for each q, or not");
+        l.part(self.a);
+        l.part(self.which);
+    }
+};
+}  // namespace
+
+TEST_CASE("carried_fields: one list written and read back, a list that does not fit refused, nothing changed") {
+    outer o;
+    o.loaded = true;
+    o.dt = 0.1;
+    o.q = Eigen::Vector2d(1.5, -2.5);
+    o.id = {7, 9007199254740991ull};  // 2^53 - 1: the largest id a double holds exactly
+    o.a.x = 3;
+    o.which = inner_b{{4, 5}};
+    const std::vector<double> list = carried_list<double>(o);
+    // flag, dt, 2 + 2 numbers, 1 + 2 ids, a, 1 + 2 numbers of b
+    CHECK(list.size() == 1 + 1 + 3 + 3 + 1 + 3);
+
+    outer back;
+    back.which = inner_b{};  // the alternative is the reader's: the list does not say which
+    restore_carried_list<double>(back, list, "outer");
+    CHECK(back.loaded);
+    CHECK(back.dt == 0.1);
+    CHECK(back.q == o.q);
+    CHECK(back.id == o.id);
+    CHECK(back.a.x == 3);
+    CHECK(std::get<inner_b>(back.which).v == std::vector<double>{4, 5});
+    CHECK(carried_list<double>(back) == list);
+
+    // A check that fails names what; the object keeps what it had.
+    std::vector<double> bad = list;
+    bad[5] = 1;  // one id where there are 2 q
+    outer kept = back;
+    kept.dt = 0.25;
+    CHECK_THROWS_WITH_AS(restore_carried_list<double>(kept, bad, "outer"),
+                         doctest::Contains("outer: the carried state of 12 numbers holds an id for each q, or not"),
+                         invalid_argument);
+    CHECK(kept.dt == 0.25);
+    std::vector<double> longer = list;
+    longer.push_back(0);
+    CHECK_THROWS_WITH_AS(restore_carried_list<double>(kept, longer, "outer"),
+                         doctest::Contains("is longer than what the stepper carries"), invalid_argument);
+    CHECK(kept.dt == 0.25);
 }
 
 }  // namespace test_core_test_carried_state

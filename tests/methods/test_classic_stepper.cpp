@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include <sympl/sympl.hpp>
 #include <sympl/hamiltonians/harmonic_oscillator.hpp>
@@ -81,6 +82,26 @@ TEST_CASE("classic_stepper: counters count each rate, and a multistep rule resta
     used.reset_counters();
     used.step(other, 0.1, 0.1);
     CHECK(used.force_evaluations() == 1);
+}
+
+TEST_CASE("classic_stepper: a system whose lambda captures is restored in place, and a refused list changes nothing") {
+    // A capturing lambda cannot be assigned: the stepper is restored in place, not through a copy.
+    const double k = 1.5;
+    const auto spring = make_newtonian([k](const auto& x, auto) { return (-k * x).eval(); });
+    auto first = make_classic<leapfrog_two_step, State>(spring);
+    State x = start;
+    for (int i = 0; i < 10; ++i) first.step(x, 0.01 * i, 0.01);
+    const std::vector<double> list = first.carried();
+    auto second = make_classic<leapfrog_two_step, State>(spring);
+    second.restore_carried(list);
+    CHECK(second.carried() == list);
+    std::vector<double> longer = list;
+    longer.push_back(0);  // read whole before it is refused
+    CHECK_THROWS_WITH_AS(second.restore_carried(longer), doctest::Contains("is longer than"), invalid_argument);
+    CHECK(second.carried() == list);
+    State y = x;
+    for (int i = 10; i < 20; ++i) first.step(x, 0.01 * i, 0.01), second.step(y, 0.01 * i, 0.01);
+    CHECK(max_difference(x, y) == 0);
 }
 
 }  // namespace test_methods_test_classic_stepper

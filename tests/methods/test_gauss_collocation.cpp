@@ -564,4 +564,26 @@ TEST_CASE("gauss_collocation: a carried list of the wrong length or size is refu
     CHECK_THROWS_WITH_AS(g.restore_carried(g3.carried()), doctest::Contains("another size"), invalid_argument);
 }
 
+TEST_CASE("gauss_collocation: a list refused after it was read whole leaves the stepper as it was") {
+    gauss_options newton;
+    newton.iteration = gauss_iteration::newton;  // the Newton part sized and refactored on reading
+    auto g = make_gauss_collocation<State>(pendulum2, 2, newton), twin = g;
+    State x = pendulum2_start, y = x;
+    for (int i = 0; i < 5; ++i) g.step(x, 0.05), twin.step(y, 0.05);
+    const std::vector<double> list = g.carried();
+    std::vector<double> longer = list;
+    longer.push_back(0);
+    CHECK_THROWS_WITH_AS(g.restore_carried(longer), doctest::Contains("is longer than"), invalid_argument);
+    // A stepper of 3 stages carries more stage values: refused before anything is sized.
+    auto g3 = make_gauss_collocation<State>(pendulum2, 3, newton);
+    State w = pendulum2_start;
+    g3.step(w, 0.05);
+    CHECK_THROWS_WITH_AS(g.restore_carried(g3.carried()), doctest::Contains("another size"), invalid_argument);
+    CHECK(g.carried() == list);
+    for (int i = 0; i < 20; ++i) g.step(x, 0.05), twin.step(y, 0.05);
+    CHECK(max_difference(x, y) == 0);
+    CHECK(g.iterations() == twin.iterations());
+    CHECK(g.factorizations() == twin.factorizations());
+}
+
 }  // namespace test_methods_test_gauss_collocation

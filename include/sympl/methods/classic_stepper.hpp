@@ -8,11 +8,11 @@
 #include <cstdint>
 #include <span>
 #include <string>
-#include <tuple>
 #include <type_traits>
 #include <utility>
 #include <vector>
 
+#include "../core/carried_in_place.hpp"
 #include "../core/carried_state.hpp"
 #include "../core/checked_reads.hpp"
 #include "../core/equations_of_motion.hpp"
@@ -72,34 +72,16 @@ struct step_history {
         dt = dt_;
         valid = true;
     }
+    // Its part of a multistep rule's carried list (classic_stepper::carried()).
+    template <class Self, class List>
+    static void carried_fields(Self& self, List& l) {
+        l.flag(self.valid);
+        l.number(self.dt);
+        l.numbers(self.last.q);
+        l.numbers(self.last.p);
+        l.check(self.last.q.size() == self.last.p.size(), "holds a last state whose q and p differ in size");
+    }
 };
-// A multistep rule's carried part (classic_stepper::carried()): its history,
-// a vector, or a number.
-template <class S, class State>
-void write_part(carried_writer<S>& w, const step_history<State>& h) {
-    w.flag(h.valid);
-    w.number(S(h.dt));
-    w.numbers(h.last.q);
-    w.numbers(h.last.p);
-}
-template <class S, class V>
-void write_part(carried_writer<S>& w, const V& v) {
-    if constexpr (std::is_arithmetic_v<V>) w.number(S(v));
-    else w.numbers(v);
-}
-template <class S, class State>
-void read_part(carried_reader<S>& r, step_history<State>& h) {
-    h.valid = r.flag();
-    h.dt = r.number();
-    r.numbers(h.last.q);
-    r.numbers(h.last.p);
-    if (h.last.q.size() != h.last.p.size()) r.refuse("holds a last state whose q and p differ in size");
-}
-template <class S, class V>
-void read_part(carried_reader<S>& r, V& v) {
-    if constexpr (std::is_arithmetic_v<V>) v = V(r.number());
-    else r.numbers(v);
-}
 }  // namespace detail
 
 // One stepper for every classic algorithm: Rule<State> holds the algorithm
@@ -131,33 +113,25 @@ public:
     void reset_counters() { eq_.forces = eq_.velocities = 0; }
     const System& system() const { return eq_.system; }
 
+    // Whether the rule carries a history from step to step (it has carried_fields).
+    static constexpr bool carries_history =
+        requires(const Rule<State>& r, detail::carried_writer<scalar>& w) { Rule<State>::carried_fields(r, w); };
+
     // What a multistep rule carries between steps (the state it returned
-    // last, its half-step momenta or previous positions, the last force):
-    // a stepper given restore_carried(carried()) and handed that state goes
-    // on bit for bit (a checkpoint). Rules without a history carry nothing.
+    // last, its half-step momenta or previous positions, the last force; the
+    // rule's carried_fields): a stepper given restore_carried(carried()) and
+    // handed that state goes on bit for bit (a checkpoint). Rules without a
+    // history carry nothing. Restored in place (carried_in_place.hpp): the
+    // stepper holds the caller's system.
     std::vector<scalar> carried() const
-        requires std::is_floating_point_v<scalar> && requires(Rule<State>& r) { r.carried_parts(); }
+        requires std::is_floating_point_v<scalar> && carries_history
     {
-        std::vector<scalar> out;
-        detail::carried_writer<scalar> w{out};
-        // carried_parts() ties the rule's members; they are only read here.
-        std::apply([&](const auto&... part) { (detail::write_part(w, part), ...); },
-                   const_cast<classic_stepper&>(*this).carried_parts());
-        return out;
+        return detail::carried_list<scalar>(*this);
     }
     void restore_carried(std::span<const scalar> values)
-        requires std::is_floating_point_v<scalar> && requires(Rule<State>& r) { r.carried_parts(); }
+        requires std::is_floating_point_v<scalar> && carries_history
     {
-        detail::carried_reader<scalar> r{values, Rule<State>::name};
-        auto parts = this->carried_parts();
-        auto kept = std::apply([](const auto&... part) { return std::make_tuple(part...); }, parts);  // if it does not fit
-        try {
-            std::apply([&](auto&... part) { (detail::read_part(r, part), ...); }, parts);
-            r.done();
-        } catch (...) {
-            parts = kept;
-            throw;
-        }
+        detail::restore_carried_in_place<scalar>(*this, values, Rule<State>::name);
     }
 
 private:

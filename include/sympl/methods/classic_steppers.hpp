@@ -12,7 +12,6 @@
 // Orders, energy factors and the derivations: docs/classic.md.
 #include <algorithm>
 #include <cmath>
-#include <tuple>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -159,7 +158,11 @@ struct velocity_verlet_rule {
     }
 
     // What carries from one step to the next (classic_stepper::carried()).
-    auto carried_parts() { return std::tie(history_, a_, p_half_, v_, p_predicted_); }
+    template <class Self, class List>
+    static void carried_fields(Self& self, List& l) {
+        l.part(self.history_);
+        for (auto* v : {&self.a_, &self.p_half_, &self.v_, &self.p_predicted_}) l.numbers(*v);
+    }
 
 private:
     typename State::vector a_, p_half_, v_, p_predicted_;
@@ -191,7 +194,11 @@ struct half_step_rule {
     const vector& half_step_momentum() const { return p_half_; }
 
     // What carries from one step to the next (classic_stepper::carried()).
-    auto carried_parts() { return std::tie(history_, a_, p_half_, v_); }
+    template <class Self, class List>
+    static void carried_fields(Self& self, List& l) {
+        l.part(self.history_);
+        for (auto* v : {&self.a_, &self.p_half_, &self.v_}) l.numbers(*v);
+    }
 
 private:
     vector a_, p_half_, v_;
@@ -231,8 +238,12 @@ struct leapfrog_two_step_rule {
     scalar central_difference_time() const { return central_time_; }
 
     // What carries from one step to the next (classic_stepper::carried()).
-    auto carried_parts() {
-        return std::tie(history_, a_, x_previous_, x_next_, v_half_, central_velocity_, central_time_);
+    template <class Self, class List>
+    static void carried_fields(Self& self, List& l) {
+        l.part(self.history_);
+        for (auto* v : {&self.a_, &self.x_previous_, &self.x_next_, &self.v_half_, &self.central_velocity_})
+            l.numbers(*v);
+        l.number(self.central_time_);
     }
 
 private:
@@ -286,7 +297,13 @@ struct damped_leapfrog_rule {
     damping_treatment treatment() const { return treatment_; }
 
     // What carries from one step to the next (classic_stepper::carried()).
-    auto carried_parts() { return std::tie(history_, force_, drag_, v_half_, v_hat_, x_hat_, v_n_, x_previous_); }
+    template <class Self, class List>
+    static void carried_fields(Self& self, List& l) {
+        l.part(self.history_);
+        for (auto* v : {&self.force_, &self.drag_, &self.v_half_, &self.v_hat_, &self.x_hat_, &self.v_n_,
+                        &self.x_previous_})
+            l.numbers(*v);
+    }
 
 private:
     damping_treatment treatment_;
@@ -377,8 +394,12 @@ private:
 
 public:
     // What carries from one step to the next (classic_stepper::carried()).
-    auto carried_parts() {
-        return std::tie(history_, f_n_, g_n_, f_, g_, q_, p_, q_corrected_, p_corrected_, q_previous_, p_previous_);
+    template <class Self, class List>
+    static void carried_fields(Self& self, List& l) {
+        l.part(self.history_);
+        for (auto* v : {&self.f_n_, &self.g_n_, &self.f_, &self.g_, &self.q_, &self.p_, &self.q_corrected_,
+                        &self.p_corrected_, &self.q_previous_, &self.p_previous_})
+            l.numbers(*v);
     }
 };
 

@@ -24,6 +24,7 @@
 
 #include <Eigen/Core>
 
+#include "../core/carried_in_place.hpp"
 #include "../core/carried_state.hpp"
 #include "../core/dual.hpp"
 #include "../core/error.hpp"
@@ -240,39 +241,29 @@ public:
     // What the stepper carries between steps (the second copy and the state
     // it returned last, the gradients kept, its step count and divergences):
     // a stepper of the same H, table and options given restore_carried(carried())
-    // and handed that state goes on bit for bit (a checkpoint).
+    // and handed that state goes on bit for bit (a checkpoint). Restored in
+    // place (carried_in_place.hpp): the stepper holds the caller's H.
     std::vector<scalar> carried() const
         requires std::is_floating_point_v<scalar>
     {
-        std::vector<scalar> out;
-        detail::carried_writer<scalar> w{out};
-        w.flag(bound_);
-        w.flag(cached_);
-        for (const vector* v : {&z_.q, &z_.p, &z_.x, &z_.y, &last_.q, &last_.p, &this->gq_, &this->gp_}) w.numbers(*v);
-        w.number(scalar(this->steps_));
-        for (P v : {this->elapsed_, this->divergence_, this->max_divergence_}) w.number(v);
-        return out;
+        return detail::carried_list<scalar>(*this);
     }
     void restore_carried(std::span<const scalar> values)
         requires std::is_floating_point_v<scalar>
     {
-        detail::carried_reader<scalar> r{values, "tao_stepper"};
-        const bool bound = r.flag(), cached = r.flag();
-        extended z;
-        state_type last;
-        vector gq, gp;
-        for (vector* v : {&z.q, &z.p, &z.x, &z.y, &last.q, &last.p, &gq, &gp}) r.numbers(*v);
-        const scalar steps = r.number();
-        P elapsed = r.number(), divergence = r.number(), max_divergence = r.number();
-        r.done();
-        for (const vector* v : {&z.p, &z.x, &z.y, &last.q, &last.p})
-            if (v->size() != z.q.size()) r.refuse("holds copies of different sizes");
-        if (!(steps >= 0) || scalar(std::size_t(steps)) != steps) r.refuse("holds a bad step count");
-        bound_ = bound, cached_ = cached;
-        z_ = std::move(z), last_ = std::move(last);
-        this->gq_ = std::move(gq), this->gp_ = std::move(gp);
-        this->steps_ = std::size_t(steps);
-        this->elapsed_ = elapsed, this->divergence_ = divergence, this->max_divergence_ = max_divergence;
+        detail::restore_carried_in_place<scalar>(*this, values, "tao_stepper");
+    }
+    template <class Self, class List>
+    static void carried_fields(Self& self, List& l) {
+        auto& z = self.z_;
+        auto& last = self.last_;
+        l.flag(self.bound_);
+        l.flag(self.cached_);
+        for (auto* v : {&z.q, &z.p, &z.x, &z.y, &last.q, &last.p, &self.gq_, &self.gp_}) l.numbers(*v);
+        l.whole(self.steps_, "holds a bad step count");
+        for (auto* v : {&self.elapsed_, &self.divergence_, &self.max_divergence_}) l.number(*v);
+        for (auto* v : {&z.p, &z.x, &z.y, &last.q, &last.p})
+            l.check(v->size() == z.q.size(), "holds copies of different sizes");
     }
 
     // One step of the map in the extended phase space, no checks (for

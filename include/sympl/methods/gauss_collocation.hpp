@@ -29,6 +29,7 @@
 
 #include <Eigen/Core>
 
+#include "../core/carried_in_place.hpp"
 #include "../core/carried_state.hpp"
 #include "../core/dual.hpp"
 #include "../core/error.hpp"
@@ -94,48 +95,39 @@ public:
     // frozen Newton Jacobian and the update's compensation. A stepper of the
     // same H, stages and options given restore_carried(carried()) and handed
     // that state goes on bit for bit (a checkpoint); the counters are not carried.
+    // Restored in place (carried_in_place.hpp): the stepper holds the caller's
+    // H and Newton factors s^2 times the size of the Jacobian carried.
     std::vector<scalar> carried() const
         requires std::is_floating_point_v<scalar>
     {
-        std::vector<scalar> out;
-        detail::carried_writer<scalar> w{out};
-        w.flag(have_stages_);
-        w.flag(newton_mode_);
-        w.number(h_prev_);
-        for (const auto* v : {&last_q_, &last_p_}) w.numbers(*v);
-        w.numbers(z_);
-        w.numbers(compensation_);
-        newton_.write_carried(w);
-        return out;
+        return detail::carried_list<scalar>(*this);
     }
-    // A list that does not fit is refused by name; one refused past its stage
-    // values leaves the stepper as reset() does.
     void restore_carried(std::span<const scalar> values)
         requires std::is_floating_point_v<scalar>
     {
-        detail::carried_reader<scalar> r{values, "gauss_collocation_stepper"};
-        const bool have = r.flag(), newton = r.flag();
-        const real h_prev = r.number();
-        vector q, p;
-        r.numbers(q);
-        r.numbers(p);
-        std::vector<scalar> z;
-        r.numbers(z);
-        column compensation;
-        r.numbers(compensation);
-        const Eigen::Index n = q.size();
-        if (p.size() != n || Eigen::Index(z.size()) != 2 * n * tableau_.stages || compensation.size() != 2 * n)
-            r.refuse("holds stage values of another size than its state's");
-        size_workspace(n);
-        newton_.read_carried(r, a_);
-        r.done();
-        z_ = Eigen::Map<const Eigen::Matrix<scalar, Eigen::Dynamic, Eigen::Dynamic>>(z.data(), 2 * n, tableau_.stages);
-        compensation_ = compensation;
-        last_q_ = std::move(q);
-        last_p_ = std::move(p);
-        h_prev_ = h_prev;
-        newton_mode_ = newton;
-        have_stages_ = have;
+        detail::restore_carried_in_place<scalar>(*this, values, "gauss_collocation_stepper");
+    }
+    template <class Self, class List>
+    static void carried_fields(Self& self, List& l) {
+        l.flag(self.have_stages_);
+        l.flag(self.newton_mode_);
+        l.number(self.h_prev_);
+        l.numbers(self.last_q_);
+        l.numbers(self.last_p_);
+        auto z = detail::carried_elements(self.z_);
+        l.numbers(z);
+        l.numbers(self.compensation_);
+        const Eigen::Index n = self.last_q_.size();
+        const int s = self.tableau_.stages;
+        l.check(self.last_p_.size() == n && z.size() == 2 * n * s && self.compensation_.size() == 2 * n,
+                "holds stage values of another size than its state's");
+        if constexpr (!std::is_const_v<Self>) {
+            self.size_scratch(n);  // the Newton part is read at this size
+            z.shape(2 * n, s);
+        }
+        l.part(self.newton_);
+        if constexpr (!std::is_const_v<Self>)
+            l.check(self.newton_.refactor(self.a_), "holds a Newton Jacobian whose matrix is singular");
     }
 
 private:

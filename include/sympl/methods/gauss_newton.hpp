@@ -12,7 +12,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <type_traits>
 
 #include <Eigen/Core>
 
@@ -21,6 +23,34 @@
 #include "newton_lu.hpp"
 
 namespace sympl::detail {
+
+// A matrix in a carried list as the vector of its elements, column by
+// column: the list holds no shape. Read back, the elements wait here until
+// shape() gives them the rows and columns the list was found to fit.
+template <class Matrix>
+class carried_elements {
+public:
+    using value_type = typename std::remove_const_t<Matrix>::Scalar;
+
+    explicit carried_elements(Matrix& m) : m_(m) {}
+    Eigen::Index size() const {
+        if constexpr (std::is_const_v<Matrix>) return m_.size();
+        else return read_.size();
+    }
+    const value_type* data() const {
+        if constexpr (std::is_const_v<Matrix>) return m_.data();
+        else return read_.data();
+    }
+    value_type* data() { return read_.data(); }
+    void resize(std::size_t n) { read_.resize(Eigen::Index(n)); }
+    void shape(Eigen::Index rows, Eigen::Index cols) {
+        m_ = Eigen::Map<const Eigen::Matrix<value_type, Eigen::Dynamic, Eigen::Dynamic>>(read_.data(), rows, cols);
+    }
+
+private:
+    Matrix& m_;
+    Eigen::Matrix<value_type, Eigen::Dynamic, 1> read_;
+};
 
 template <class Real, int Dim>
 class frozen_newton {
@@ -33,7 +63,7 @@ public:
     void resize(Eigen::Index n, int stages) {
         n_ = n;
         stages_ = stages;
-        jacobian_.setZero(2 * n, 2 * n);  // zeros only for write_carried before any Jacobian
+        jacobian_.setZero(2 * n, 2 * n);  // zeros only for carried() before any Jacobian
         scale_.setZero(2 * n);
         lu_.resize(2 * n * stages);
         q_.resize(n);
@@ -111,33 +141,26 @@ public:
     }
 
     // What the next step reads (a checkpoint): the Jacobian, its scales, the
-    // step size factored for; the factors themselves are rebuilt on reading,
-    // the same arithmetic on the same numbers, so bit for bit (counters not carried).
-    template <class Writer>
-    void write_carried(Writer& w) const {
-        w.flag(have_jacobian_);
-        w.flag(factored_);
-        w.number(h_);
-        w.numbers(jacobian_);
-        w.numbers(scale_);
+    // step size factored for; the factors themselves are rebuilt on reading
+    // (refactor), the same arithmetic on the same numbers, so bit for bit
+    // (counters not carried). Read after resize(n, stages).
+    template <class Self, class List>
+    static void carried_fields(Self& self, List& l) {
+        l.flag(self.have_jacobian_);
+        l.flag(self.factored_);
+        l.number(self.h_);
+        auto jacobian = carried_elements(self.jacobian_);
+        l.numbers(jacobian);
+        l.numbers(self.scale_);
+        const Eigen::Index m = 2 * self.n_;
+        l.check(jacobian.size() == m * m && self.scale_.size() == m && (self.have_jacobian_ || !self.factored_),
+                "holds a Newton Jacobian of another size than the state's");
+        if constexpr (!std::is_const_v<Self>) jacobian.shape(m, m);
     }
-    // Reads what write_carried wrote, after resize(n, stages); a the tableau's A.
-    template <class Reader, class Tableau>
-    void read_carried(Reader& r, const Tableau& a) {
-        const bool have = r.flag(), factored = r.flag();
-        const Real h = r.number();
-        Eigen::Matrix<Real, Eigen::Dynamic, 1> jacobian, scale;
-        r.numbers(jacobian);
-        r.numbers(scale);
-        const Eigen::Index m = 2 * n_;
-        if (jacobian.size() != m * m || scale.size() != m || (factored && !have))
-            r.refuse("holds a Newton Jacobian of another size than the state's");
-        jacobian_ = Eigen::Map<const Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic>>(jacobian.data(), m, m);
-        scale_ = scale;
-        have_jacobian_ = have;
-        factored_ = false;
-        h_ = h;
-        if (factored && build_and_factor(a, h) >= 0) r.refuse("holds a Newton Jacobian whose matrix is singular");
+    // The factors of a Jacobian read as factored, for the tableau's A; false if singular.
+    template <class Tableau>
+    bool refactor(const Tableau& a) {
+        return !factored_ || build_and_factor(a, h_) < 0;
     }
 
 private:

@@ -74,14 +74,18 @@ protected:
     }
 
     void size_workspace(Eigen::Index n) {
+        size_scratch(n);
+        z_.setZero(2 * n, tableau_.stages);  // zeros only so that carried() before a step writes numbers
+        compensation_.setZero(2 * n);
+    }
+    // All but the stage values and the compensation (which a carried list restores).
+    void size_scratch(Eigen::Index n) {
         n_ = n;
         const int s = tableau_.stages;
         newton_.resize(n, s);
-        z_.setZero(2 * n, s);  // zeros only so that carried() before a step writes numbers
         dz_.resize(2 * n, s);
         f_.resize(2 * n, s);
         delta_.resize(2 * n);
-        compensation_.setZero(2 * n);
         ymax_.resize(2 * n);
         yq_.resize(n);
         yp_.resize(n);

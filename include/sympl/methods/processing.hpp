@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "../core/carried_in_place.hpp"
 #include "../core/carried_state.hpp"
 #include "../core/error.hpp"
 #include "../core/hamiltonian.hpp"
@@ -130,39 +131,32 @@ public:
     // What the stepper carries between calls (the kernel's state and its
     // memory, the x it returned last and its dt): a stepper of the same H and
     // method given restore_carried(carried()) and handed that x goes on bit
-    // for bit (a checkpoint). The counters are not carried.
+    // for bit (a checkpoint). The counters are not carried. Restored in place
+    // (carried_in_place.hpp): the stepper holds the caller's H.
     std::vector<scalar> carried() const
         requires std::is_floating_point_v<scalar>
     {
-        std::vector<scalar> out;
-        detail::carried_writer<scalar> w{out};
-        w.flag(carried_);
-        w.number(dt_);
-        const stepper_memory<vector> m = kernel_.memory();
-        for (const vector* v : {&y_.q, &y_.p, &returned_.q, &returned_.p, &m.force, &m.velocity, &m.q_error, &m.p_error})
-            w.numbers(*v);
-        w.flag(m.force_fresh);
-        w.flag(m.velocity_fresh);
-        return out;
+        return detail::carried_list<scalar>(*this);
     }
     void restore_carried(std::span<const scalar> values)
         requires std::is_floating_point_v<scalar>
     {
-        detail::carried_reader<scalar> r{values, "processed_stepper"};
-        const bool carried = r.flag();
-        const scalar dt = r.number();
-        State y, returned;
-        stepper_memory<vector> m = kernel_.memory();  // its counters stay
-        for (vector* v : {&y.q, &y.p, &returned.q, &returned.p, &m.force, &m.velocity, &m.q_error, &m.p_error})
-            r.numbers(*v);
-        m.force_fresh = r.flag();
-        m.velocity_fresh = r.flag();
-        r.done();
-        if (y.p.size() != y.q.size() || returned.q.size() != y.q.size() || returned.p.size() != y.q.size())
-            r.refuse("holds states of different sizes");
-        kernel_.restore(m);
-        carried_ = carried, dt_ = dt;
-        y_ = std::move(y), returned_ = std::move(returned);
+        detail::restore_carried_in_place<scalar>(*this, values, "processed_stepper");
+    }
+    template <class Self, class List>
+    static void carried_fields(Self& self, List& l) {
+        l.flag(self.carried_);
+        l.number(self.dt_);
+        auto& y = self.y_;
+        auto& x = self.returned_;
+        stepper_memory<vector> m = self.kernel_.memory();  // its counters stay
+        for (auto* v : {&y.q, &y.p, &x.q, &x.p}) l.numbers(*v);
+        for (auto* v : {&m.force, &m.velocity, &m.q_error, &m.p_error}) l.numbers(*v);
+        l.flag(m.force_fresh);
+        l.flag(m.velocity_fresh);
+        l.check(y.p.size() == y.q.size() && x.q.size() == y.q.size() && x.p.size() == y.q.size(),
+                "holds states of different sizes");
+        if constexpr (!std::is_const_v<Self>) self.kernel_.restore(m);
     }
     const H& hamiltonian() const { return kernel_.hamiltonian(); }
     const processed_method& method() const { return method_; }

@@ -35,6 +35,7 @@
 #include <utility>
 #include <vector>
 
+#include "../core/carried_in_place.hpp"
 #include "../core/carried_state.hpp"
 #include "../core/error.hpp"
 #include "../core/hamiltonian.hpp"
@@ -97,6 +98,12 @@ struct known_force {
     void keep(const vector& x, const vector& k_, const vector& u_) {
         q = x, k = k_, u = u_;
         valid = true;
+    }
+    template <class Self, class List>
+    static void carried_fields(Self& self, List& l) {
+        l.flag(self.valid);
+        for (auto* v : {&self.q, &self.k, &self.u}) l.numbers(*v);
+        l.check(self.k.size() == self.q.size() && self.u.size() == self.q.size(), "holds a force of another size");
     }
 };
 
@@ -191,34 +198,25 @@ public:
     // What the stepper carries between steps: the forces it already has (at
     // the start of the last attempt and, FSAL, at its end), reused when
     // handed that q. A stepper given restore_carried(carried()) goes on bit
-    // for bit with the same evaluation counts (a checkpoint).
+    // for bit with the same evaluation counts (a checkpoint). Restored in
+    // place (carried_in_place.hpp): the stepper holds the caller's H.
     std::vector<scalar> carried() const
         requires std::is_floating_point_v<scalar>
     {
-        std::vector<scalar> out;
-        detail::carried_writer<scalar> w{out};
-        for (const auto& f : known_) {
-            w.flag(f.valid);
-            for (const vector* v : {&f.q, &f.k, &f.u}) w.numbers(*v);
-        }
-        return out;
+        return detail::carried_list<scalar>(*this);
     }
     void restore_carried(std::span<const scalar> values)
         requires std::is_floating_point_v<scalar>
     {
-        detail::carried_reader<scalar> r{values, who_.c_str()};
-        std::array<detail::known_force<vector>, 2> known;
-        for (auto& f : known) {
-            f.valid = r.flag();
-            for (vector* v : {&f.q, &f.k, &f.u}) r.numbers(*v);
-            if (f.k.size() != f.q.size() || f.u.size() != f.q.size()) r.refuse("holds a force of another size");
-        }
-        r.done();
-        if (known[0].valid && known[1].valid && known[0].q.size() != known[1].q.size())
-            r.refuse("holds forces of different sizes");
-        for (const auto& f : known)
-            if (f.valid) size_workspace(f.q.size());  // sizing after this would forget them
-        known_ = std::move(known);
+        detail::restore_carried_in_place<scalar>(*this, values, who_.c_str());
+        for (const auto& f : known_)
+            if (f.valid) resize_workspace(f.q.size());  // not size_workspace: it would forget them
+    }
+    template <class Self, class List>
+    static void carried_fields(Self& self, List& l) {
+        const auto& k = self.known_;
+        for (auto& f : self.known_) l.part(f);
+        l.check(!(k[0].valid && k[1].valid) || k[0].q.size() == k[1].q.size(), "holds forces of different sizes");
     }
 
     void check(const State& x, scalar dt, const char* who) const {
@@ -250,11 +248,15 @@ private:
     }
 
     void size_workspace(Eigen::Index n) {
-        if (w_.v0.size() == n) return;
+        if (resize_workspace(n)) known_[0].valid = known_[1].valid = false;
+    }
+    // Whether the workspace was of another size.
+    bool resize_workspace(Eigen::Index n) {
+        if (w_.v0.size() == n) return false;
         w_.resize(n), partial_.resize(n);
         error_q_.resize(n), error_p_.resize(n);
         trial_ = State(n);
-        known_[0].valid = known_[1].valid = false;
+        return true;
     }
 
     // own: an evaluation of the run's steps, else of an interpolation.

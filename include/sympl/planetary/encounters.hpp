@@ -141,9 +141,37 @@ public:
     const std::vector<encounter_record<S>>& encounters() const { return encounters_; }
     const std::vector<loss_record<S>>& losses() const { return losses_; }
     void clear_logs() { encounters_.clear(), losses_.clear(); }
-    // The time and logs a checkpoint carried (test_particle_run::read_carried).
-    void restore_logs(S time, std::vector<encounter_record<S>> encounters, std::vector<loss_record<S>> losses) {
-        time_ = time, encounters_ = std::move(encounters), losses_ = std::move(losses);
+
+    // The tracker's part of a carried list (test_particle_run): whether it is
+    // on, then its time and both logs, so that a resumed run's logs are the
+    // whole run's. Its options are the caller's: track_encounters again before restoring.
+    template <class Self, class List>
+    static void carried_fields(Self& self, List& l) {
+        bool on = self.on_;
+        l.flag(on);
+        l.check(on == self.on_, self.on_ ? "holds no encounter log, but the stepper tracks encounters"
+                                         : "holds an encounter log, but the stepper tracks none (track_encounters "
+                                           "before restoring)");
+        if (!on) return;
+        l.number(self.time_);
+        log_count(l, self.encounters_, 5, "holds a bad number of encounters");
+        for (auto& e : self.encounters_) {
+            l.number(e.time);
+            l.whole(e.particle, "holds a bad particle id");
+            body_index(self, l, e.body, "holds an encounter with no such body");
+            l.number(e.distance), l.number(e.hill_radii);
+        }
+        log_count(l, self.losses_, 6, "holds a bad number of losses");
+        for (auto& loss : self.losses_) {
+            l.number(loss.time);
+            l.whole(loss.particle, "holds a bad particle id");
+            std::uint64_t reason = std::uint64_t(loss.reason);
+            l.whole(reason, "holds no such loss reason");
+            l.check(reason < 4, "holds no such loss reason");
+            if constexpr (!std::is_const_v<Self>) loss.reason = loss_reason(reason);
+            body_index(self, l, loss.body, "holds a loss to no such body");
+            l.number(loss.distance), l.number(loss.energy);
+        }
     }
 
     // The state the next step starts from.
@@ -173,6 +201,21 @@ public:
 
 private:
     static constexpr std::size_t block = 256;  // particles whose pairs are marked at a time
+
+    // A log's length, each record `per` numbers: read back, no longer than the list could hold.
+    template <class List, class Log>
+    static void log_count(List& l, Log& log, double per, const char* what) {
+        std::size_t n = log.size();
+        const double limit = detail::carried_left(l) / per + 1;
+        l.whole(n, what);
+        l.check(double(n) < limit, what);
+        if constexpr (!std::is_const_v<Log>) log.resize(n);
+    }
+    template <class Self, class List, class Body>
+    static void body_index(Self& self, List& l, Body& k, const char* what) {
+        l.whole(k, what);
+        l.check(k < self.mass_.size(), what);
+    }
 
     void check(const arrays& p, const arrays& b, const std::vector<std::uint64_t>& id, S dt, std::vector<char>& gone) {
         time_ += dt;

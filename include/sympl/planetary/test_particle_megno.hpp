@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #include "../analysis/chaos_indicator.hpp"
@@ -119,35 +120,24 @@ public:
 
     // What the tangents carry between steps (a checkpoint): on or not, the
     // time, and per particle the tangent, its scale and MEGNO's sums.
-    void write_carried(detail::carried_writer<S>& w) const {
-        w.flag(started_);
-        w.number(time_);
-        for (const auto& v : dq_) w.numbers(v);
-        w.numbers(log_scale_);
-        w.number(S(megno_.size()));
-        for (const auto& a : megno_) {
-            for (S v : {a.weighted_growth, a.sum_y, a.last_log_norm, a.y}) w.number(v);
-            w.number(S(a.samples));
+    template <class Self, class List>
+    static void carried_fields(Self& self, List& l) {
+        l.flag(self.started_);
+        l.number(self.time_);
+        for (auto& v : self.dq_) l.numbers(v);
+        l.numbers(self.log_scale_);
+        std::size_t n = self.megno_.size();
+        l.whole(n, "holds a MEGNO count unlike its tangents'");
+        l.check(n == self.log_scale_.size(), "holds a MEGNO count unlike its tangents'");
+        if constexpr (!std::is_const_v<Self>) self.megno_.assign(n, {});
+        for (auto& a : self.megno_) {
+            for (auto* v : {&a.weighted_growth, &a.sum_y, &a.last_log_norm, &a.y}) l.number(*v);
+            l.whole(a.samples, "holds a bad MEGNO sample count");
         }
+        for (const auto& v : self.dq_) l.check(v.size() == self.megno_.size(), "holds tangents of unequal lengths");
     }
-    void read_carried(detail::carried_reader<S>& r) {
-        started_ = r.flag();
-        time_ = r.number();
-        for (auto& v : dq_) r.numbers(v);
-        r.numbers(log_scale_);
-        const S n = r.number();
-        if (!(n >= S(0)) || S(std::size_t(n)) != n || std::size_t(n) != log_scale_.size())
-            r.refuse("holds a MEGNO count unlike its tangents'");
-        megno_.assign(std::size_t(n), {});
-        for (auto& a : megno_) {
-            for (S* v : {&a.weighted_growth, &a.sum_y, &a.last_log_norm, &a.y}) *v = r.number();
-            const S samples = r.number();
-            if (!(samples >= S(0)) || S(std::size_t(samples)) != samples) r.refuse("holds a bad MEGNO sample count");
-            a.samples = std::size_t(samples);
-        }
-        for (const auto& v : dq_)
-            if (v.size() != megno_.size()) r.refuse("holds tangents of unequal lengths");
-    }
+    // Particles with a tangent.
+    std::size_t size() const { return megno_.size(); }
 
 private:
     arrays dq_;  // (dQ, dv) per particle

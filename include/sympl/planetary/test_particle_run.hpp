@@ -23,49 +23,6 @@
 
 namespace sympl {
 
-namespace detail {
-// The encounter tracker's part of the carried list: whether it is on, then
-// its time and both logs, so that a resumed run's logs are the whole run's.
-// Its options are the caller's: track_encounters again before restoring.
-template <class S>
-void write_encounter_log(const encounter_tracker<S>& t, carried_writer<S>& w) {
-    w.flag(t.on());
-    if (!t.on()) return;
-    w.number(t.time());
-    w.number(S(t.encounters().size()));
-    for (const auto& e : t.encounters())
-        for (S v : {e.time, S(e.particle), S(e.body), e.distance, e.hill_radii}) w.number(v);
-    w.number(S(t.losses().size()));
-    for (const auto& l : t.losses())
-        for (S v : {l.time, S(l.particle), S(int(l.reason)), S(l.body), l.distance, l.energy}) w.number(v);
-}
-
-template <class S>
-void read_encounter_log(encounter_tracker<S>& t, carried_reader<S>& r, std::size_t bodies) {
-    if (r.flag() != t.on())
-        r.refuse(t.on() ? "holds no encounter log, but the stepper tracks encounters"
-                        : "holds an encounter log, but the stepper tracks none (track_encounters before restoring)");
-    if (!t.on()) return;
-    const S time = r.number();
-    std::vector<encounter_record<S>> encounters(r.whole(r.left() / 5 + 1, "holds a bad number of encounters"));
-    for (auto& e : encounters) {
-        e.time = r.number();
-        e.particle = r.whole("holds a bad particle id");
-        e.body = std::size_t(r.whole(double(bodies), "holds an encounter with no such body"));
-        e.distance = r.number(), e.hill_radii = r.number();
-    }
-    std::vector<loss_record<S>> losses(r.whole(r.left() / 6 + 1, "holds a bad number of losses"));
-    for (auto& l : losses) {
-        l.time = r.number();
-        l.particle = r.whole("holds a bad particle id");
-        l.reason = loss_reason(r.whole(4.0, "holds no such loss reason"));
-        l.body = std::size_t(r.whole(double(bodies), "holds a loss to no such body"));
-        l.distance = r.number(), l.energy = r.number();
-    }
-    t.restore_logs(time, std::move(encounters), std::move(losses));
-}
-}  // namespace detail
-
 template <class S>
 class test_particle_run {
 public:
@@ -144,25 +101,17 @@ public:
     }
 
     // The carried list's part (wisdom_holman_stepper::carried()): the set as
-    // of the last return, then the flows' particles and MEGNO tangents.
-    void write_carried(detail::carried_writer<S>& w) const {
-        for (const auto* v : particles_.parts()) w.numbers(*v);
-        w.number(S(particles_.id.size()));
-        for (std::uint64_t i : particles_.id) w.number(S(i));
-        std::visit([&](const auto& p) { p.write_carried(w); }, flows_);
-        detail::write_encounter_log(tracker_, w);
-    }
-    // Read into this; the caller reads into a copy and keeps it only if the
-    // whole list fits.
-    void read_carried(detail::carried_reader<S>& r) {
-        test_particle_set<S> particles;
-        for (auto* v : particles.parts()) r.numbers(*v);
-        test_particle_flows<S, democratic_heliocentric_coordinates<S>>::read_ids(r, particles.id);
-        for (const auto* v : particles.parts())
-            if (v->size() != particles.id.size()) r.refuse("holds test particles of unequal lengths");
-        std::visit([&](auto& p) { p.read_carried(r); }, flows_);
-        detail::read_encounter_log(tracker_, r, mass_.size());
-        particles_ = std::move(particles);
+    // of the last return, the flows' particles and MEGNO tangents, and the
+    // encounter logs.
+    template <class Self, class List>
+    static void carried_fields(Self& self, List& l) {
+        auto& set = self.particles_;
+        for (auto* v : set.parts()) l.numbers(*v);
+        detail::carried_ids(l, set.id);
+        for (const auto* v : set.parts())
+            l.check(v->size() == set.id.size(), "holds test particles of unequal lengths");
+        l.part(self.flows_);
+        l.part(self.tracker_);
     }
 
 private:

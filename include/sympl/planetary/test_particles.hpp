@@ -75,6 +75,26 @@ void check_test_particles(const test_particle_set<S>& p, const std::string& who)
     }
 }
 
+// What is left to read of a carried list: the bound of a count read next
+// (a writer has no bound).
+template <class List>
+double carried_left(const List& l) {
+    if constexpr (requires { l.left(); }) return l.left();
+    else return std::numeric_limits<double>::infinity();
+}
+
+// Test particles' ids in a carried list: their count, which sizes nothing
+// the list could not hold, then each (exact below 2^53).
+template <class List, class Ids>
+void carried_ids(List& l, Ids& id) {
+    std::size_t n = id.size();
+    const double left = carried_left(l);
+    l.whole(n, "holds a bad number of test particles");
+    l.check(double(n) < left, "holds a bad number of test particles");
+    if constexpr (!std::is_const_v<Ids>) id.resize(n);
+    for (auto& i : id) l.whole(i, "holds a bad particle id");
+}
+
 // Every particle (Q, v in q) drifted about gm over t one at a time, where
 // the lanes refused the batch: a particle at the star or gone non-finite is
 // made non-finite (for the caller to remove), the others drift.
@@ -198,25 +218,14 @@ public:
 
     // What the particles carry between steps (wisdom_holman_stepper::carried()):
     // Q, v and the id of each, and their MEGNO tangents.
-    void write_carried(detail::carried_writer<S>& w) const {
-        for (const auto& v : q_) w.numbers(v);
-        w.number(S(id_.size()));
-        for (std::uint64_t i : id_) w.number(S(i));
-        tangent_.write_carried(w);
-    }
-    void read_carried(detail::carried_reader<S>& r) {
-        for (auto& v : q_) r.numbers(v);
-        read_ids(r, id_);
-        for (const auto& v : q_)
-            if (v.size() != id_.size()) r.refuse("holds test particles of unequal lengths");
-        tangent_.read_carried(r);
-        if (tangent_.started() && tangent_.megno().size() != id_.size())
-            r.refuse("holds MEGNO tangents for another number of test particles");
-    }
-    // Ids as carried numbers (exact below 2^53).
-    static void read_ids(detail::carried_reader<S>& r, std::vector<std::uint64_t>& id) {
-        id.resize(std::size_t(r.whole(r.left(), "holds a bad number of test particles")));  // an id each to follow
-        for (auto& i : id) i = r.whole("holds a bad particle id");
+    template <class Self, class List>
+    static void carried_fields(Self& self, List& l) {
+        for (auto& v : self.q_) l.numbers(v);
+        detail::carried_ids(l, self.id_);
+        for (const auto& v : self.q_) l.check(v.size() == self.id_.size(), "holds test particles of unequal lengths");
+        l.part(self.tangent_);
+        l.check(!self.tangent_.started() || self.tangent_.size() == self.id_.size(),
+                "holds MEGNO tangents for another number of test particles");
     }
 
     // The particles' Q, v (by id()), and the star's and planets' positions

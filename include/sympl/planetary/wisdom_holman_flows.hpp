@@ -128,19 +128,13 @@ public:
     // What the flows carry between steps (the planets' state and forces, the
     // centre of mass, whether the forces and the state are good), for
     // wisdom_holman_stepper::carried(); the tangent is not carried.
-    void write_carried(detail::carried_writer<S>& w) const {
-        for (const auto& v : state_) w.numbers(v);
-        w.numbers(centre_);
-        w.numbers(momentum_);
-        w.flag(forces_fresh_);
-        w.flag(finite_);
-    }
-    void read_carried(detail::carried_reader<S>& r) {
-        for (auto& v : state_) r.numbers_of_size(v);
-        r.numbers(centre_);
-        r.numbers(momentum_);
-        forces_fresh_ = r.flag();
-        finite_ = r.flag();
+    template <class Self, class List>
+    static void carried_fields(Self& self, List& l) {
+        for (auto& v : self.state_) l.numbers_of_size(v);
+        l.numbers(self.centre_);
+        l.numbers(self.momentum_);
+        l.flag(self.forces_fresh_);
+        l.flag(self.finite_);
     }
 
     const Coordinates& coordinates() const { return coords_; }

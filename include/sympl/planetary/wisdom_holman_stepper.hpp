@@ -172,37 +172,22 @@ public:
     // What the stepper carries between calls (its coordinates and last forces,
     // the state it returned, the dt of its C^-1, the test particles, their
     // MEGNO and encounter logs; not the planets' tangent): restored, it goes
-    // on bit for bit.
-    std::vector<scalar> carried() const {
-        std::vector<scalar> out;
-        detail::carried_writer<scalar> w{out};
-        w.flag(loaded_);
-        w.number(corrected_dt_);
-        w.numbers(last_.q);
-        w.numbers(last_.p);
-        std::visit([&](const auto& f) { f.write_carried(w); }, flows_);
-        test_particles_.write_carried(w);
-        return out;
-    }
+    // on bit for bit. Read into a copy: a list that does not fit leaves it as it was.
+    std::vector<scalar> carried() const { return detail::carried_list<scalar>(*this); }
     void restore_carried(std::span<const scalar> values) {
-        detail::carried_reader<scalar> r{values, "wisdom_holman_stepper"};
-        const bool loaded = r.flag();
-        const scalar corrected_dt = r.number();
-        State last;
-        r.numbers(last.q);
-        r.numbers(last.p);
-        if (last.q.size() != last.p.size() || (loaded && std::size_t(last.q.size()) != 3 * mass_.size()))
-            r.refuse("holds a state of another size than the bodies'");
-        flows_type flows = flows_;  // the stepper untouched by a list that does not fit
-        std::visit([&](auto& f) { f.read_carried(r); }, flows);
-        test_particle_run<scalar> test_particles = test_particles_;
-        test_particles.read_carried(r);
-        r.done();
-        flows_ = std::move(flows);
-        test_particles_ = std::move(test_particles);
-        loaded_ = loaded;
-        corrected_dt_ = corrected_dt;
-        last_ = std::move(last);
+        detail::restore_carried_list<scalar>(*this, values, "wisdom_holman_stepper");
+    }
+    template <class Self, class List>
+    static void carried_fields(Self& self, List& l) {
+        l.flag(self.loaded_);
+        l.number(self.corrected_dt_);
+        l.numbers(self.last_.q);
+        l.numbers(self.last_.p);
+        const std::size_t n = std::size_t(self.last_.q.size());
+        l.check(std::size_t(self.last_.p.size()) == n && (!self.loaded_ || n == 3 * self.mass_.size()),
+                "holds a state of another size than the bodies'");
+        l.part(self.flows_);
+        l.part(self.test_particles_);
     }
 
     const table& method() const { return table_; }
