@@ -12,6 +12,7 @@
 #include <sympl/methods/extrapolation.hpp>
 #include <sympl/planetary/wisdom_holman_stepper.hpp>
 
+#include "method_name.hpp"
 #include "near_names.hpp"
 
 namespace sympl::app {
@@ -75,19 +76,30 @@ std::string nearest_table(const std::string& given, const std::map<std::string, 
     return did_you_mean(given, table_names(inline_tables));
 }
 
-std::string trimmed(const std::string& s) {
-    const auto first = s.find_first_not_of(" \t"), last = s.find_last_not_of(" \t");
-    return first == std::string::npos ? "" : s.substr(first, last - first + 1);
+// The table a method's name wraps (tao(...), wh(...), ...): a table with no
+// extrapolation or compensation of its own, and none of force-gradient kicks
+// unless `force_gradient` allows them ("a plain table"); else refused naming
+// the inner name with the nearest table's.
+table inner_table(const std::string& name, const std::string& inner_name, const std::string& usage,
+                  const std::map<std::string, table>& inline_tables, bool force_gradient) {
+    const auto inner = resolve_method(inner_name, inline_tables);
+    const bool fits = inner && inner->kind == method_kind::table && !inner->extrapolation_columns &&
+                      !inner->compensated && (force_gradient || !inner->coefficients->has_force_gradient());
+    if (!fits)
+        throw invalid_argument("method '" + name + "': '" + inner_name + "' is not a " + (force_gradient ? "" : "plain ") +
+                               "table; " + nearest_table(inner_name, inline_tables) + usage.substr(2));
+    return *inner->coefficients;
 }
 
 // extrapolated(<table or logh(<table>)>, <columns>)
-method_spec extrapolated(const std::string& name, const std::map<std::string, table>& inline_tables) {
+method_spec extrapolated(const std::string& name, const std::string& inside,
+                         const std::map<std::string, table>& inline_tables) {
     const std::string usage = "; expected extrapolated(<symmetric table or logh(<symmetric table>)>, <columns 1 to " +
                               std::to_string(max_extrapolation_columns) + ">)";
-    const std::string args = name.substr(13, name.size() - 14);
-    const auto comma = args.rfind(',');
-    if (comma == std::string::npos) throw invalid_argument("method '" + name + "': no column count" + usage);
-    const std::string inner_name = trimmed(args.substr(0, comma)), count = trimmed(args.substr(comma + 1));
+    const auto split = split_last(inside);
+    if (!split) throw invalid_argument("method '" + name + "': no column count" + usage);
+    const std::string& inner_name = split->before;
+    const std::string& count = split->argument;
     int columns = 0;
     const auto [end, error] = std::from_chars(count.data(), count.data() + count.size(), columns);
     if (error != std::errc{} || end != count.data() + count.size() || columns < 1 || columns > max_extrapolation_columns)
@@ -110,35 +122,31 @@ method_spec extrapolated(const std::string& name, const std::map<std::string, ta
 // catalog's or the scene's) that composes leapfrog steps symmetrically,
 // checked as the library checks it; Tao's binding omega from the scene, or
 // unset: from the problem's scales (problem_scales.hpp).
-method_spec on_extended_phase_space(const std::string& name, method_kind kind, std::size_t prefix,
+method_spec on_extended_phase_space(const std::string& name, method_kind kind, const method_call& call,
                                     const std::map<std::string, table>& inline_tables) {
-    std::string inner_name = trimmed(name.substr(prefix, name.size() - prefix - 1));
-    const std::string usage = "; expected " + name.substr(0, prefix) +
-                              "<a symmetric composition of leapfrog steps: leapfrog_kdk, yoshida_4, yoshida_6, "
+    std::string inner_name = call.inside;
+    const std::string usage = "; expected " + call.head +
+                              "(<a symmetric composition of leapfrog steps: leapfrog_kdk, yoshida_4, yoshida_6, "
                               "kahan_li_8, ...>" + (kind == method_kind::tao ? "[, omega = <binding > 0>]" : "") + ")";
     std::optional<double> omega;
-    if (const auto comma = inner_name.rfind(','); kind == method_kind::tao && comma != std::string::npos &&
-                                                  !resolve_method(inner_name, inline_tables)) {
-        const std::string option = trimmed(inner_name.substr(comma + 1));
-        const auto equals = option.find('=');
-        const std::string key = trimmed(option.substr(0, equals));
-        const std::string value = equals == std::string::npos ? "" : trimmed(option.substr(equals + 1));
-        if (key != "omega")
-            throw invalid_argument("method '" + name + "': unknown option '" + key + "'; " +
-                                   did_you_mean(key, {"omega"}) + "expected omega" + usage);
+    // An inline table's name may hold commas: an option only where the whole is no method.
+    if (const auto split = split_last(inner_name);
+        kind == method_kind::tao && split && !resolve_method(inner_name, inline_tables)) {
+        const method_option option = option_of(split->argument);
+        if (option.key != "omega")
+            throw invalid_argument("method '" + name + "': unknown option '" + option.key + "'; " +
+                                   did_you_mean(option.key, {"omega"}) + "expected omega" + usage);
+        const std::string value = option.value.value_or("");
         double w = 0;
         const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), w);
         if (error != std::errc{} || end != value.data() + value.size() || !std::isfinite(w) || !(w > 0))
             throw invalid_argument("method '" + name + "': omega = '" + value + "'" + usage);
         omega = w;
-        inner_name = trimmed(inner_name.substr(0, comma));
+        inner_name = split->before;
     }
-    const auto inner = resolve_method(inner_name, inline_tables);
-    if (!inner || inner->kind != method_kind::table || inner->extrapolation_columns || inner->compensated)
-        throw invalid_argument("method '" + name + "': '" + inner_name + "' is not a table; " +
-                               nearest_table(inner_name, inline_tables) + usage.substr(2));
-    sympl::detail::leapfrog_composition_weights(*inner->coefficients, "method '" + name + "'");  // throws naming it
-    method_spec m = spec(name, kind, inner->coefficients);
+    const table coefficients = inner_table(name, inner_name, usage, inline_tables, true);
+    sympl::detail::leapfrog_composition_weights(coefficients, "method '" + name + "'");  // throws naming it
+    method_spec m = spec(name, kind, coefficients);
     m.omega = omega;
     return m;
 }
@@ -146,82 +154,75 @@ method_spec on_extended_phase_space(const std::string& name, method_kind kind, s
 // cartesian_split(<table>): a symmetric composition of leapfrog steps, as
 // the library checks it; cylindrical_split(<table>): any kick-drift table
 // without force-gradient kicks.
-method_spec charged_split(const std::string& name, charged_scheme scheme, std::size_t prefix,
+method_spec charged_split(const std::string& name, charged_scheme scheme, const method_call& call,
                           const std::map<std::string, table>& inline_tables) {
-    const std::string inner_name = trimmed(name.substr(prefix, name.size() - prefix - 1));
     const bool composition = scheme == charged_scheme::cartesian_split;
-    const std::string usage = "; expected " + name.substr(0, prefix) +
+    const std::string usage = "; expected " + call.head + "(" +
                               (composition ? "<a symmetric composition of leapfrog steps: leapfrog_kdk, yoshida_6, "
                                              "kahan_li_8, ...>)"
                                            : "<a table of kicks and drifts: leapfrog_kdk, blanes_moan_srkn11b, ...>)");
-    const auto inner = resolve_method(inner_name, inline_tables);
-    if (!inner || inner->kind != method_kind::table || inner->extrapolation_columns || inner->compensated ||
-        inner->coefficients->has_force_gradient())
-        throw invalid_argument("method '" + name + "': '" + inner_name + "' is not a plain table; " +
-                               nearest_table(inner_name, inline_tables) + usage.substr(2));
+    const table coefficients = inner_table(name, call.inside, usage, inline_tables, false);
     if (composition)
-        sympl::detail::leapfrog_composition_weights(*inner->coefficients, "method '" + name + "'");  // throws naming it
-    method_spec m = spec(name, method_kind::charged, inner->coefficients);
+        sympl::detail::leapfrog_composition_weights(coefficients, "method '" + name + "'");  // throws naming it
+    method_spec m = spec(name, method_kind::charged, coefficients);
     m.parameters.scheme = scheme;
     return m;
 }
 
+// One option of wh(...) into m, or refused with the value and the choices.
+void wisdom_holman_option(method_spec& m, const std::string& name, const std::string& key, const std::string& value,
+                          const std::string& usage) {
+    if (key == "corrector") {
+        const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), m.corrector_order);
+        if (error != std::errc{} || end != value.data() + value.size() || m.corrector_order < 1)
+            throw invalid_argument("method '" + name + "': corrector = '" + value + "'" + usage);
+    } else if (key == "coordinates") {
+        if (value == "jacobi") m.jacobi = true;
+        else if (value != "democratic_heliocentric")
+            throw invalid_argument("method '" + name + "': coordinates = '" + value + "'; " +
+                                   did_you_mean(value, {"democratic_heliocentric", "jacobi"}) + usage.substr(2));
+    } else if (value == "composition") {
+        m.composition_kernel = true;
+    } else if (value == "lazy") {
+        m.lazy_kernel = true;
+    } else if (value != "kick") {
+        throw invalid_argument("method '" + name + "': kernel = '" + value + "'; " +
+                               did_you_mean(value, {"composition", "lazy", "kick"}) + usage.substr(2));
+    }
+}
+
 // wh(<table>[, corrector = K][, kernel = composition|lazy][, coordinates =
-// jacobi]): any plain table (the
-// catalog's or the scene's) without force-gradient kicks; its drifts become
+// jacobi]): any plain table (the catalog's or the scene's); its drifts become
 // Kepler flows, its kicks the planets' interaction. The options are the
 // library's wisdom_holman_options, checked against the table as the stepper
 // checks them (plan_wisdom_holman), so a misfit is refused before any run.
-method_spec wisdom_holman(const std::string& name, const std::map<std::string, table>& inline_tables) {
+method_spec wisdom_holman(const std::string& name, const method_call& call,
+                          const std::map<std::string, table>& inline_tables) {
     const std::string usage = "; expected wh(<a table of kicks and drifts: leapfrog_kdk, saba_2, sbab_3, ...>"
                               "[, corrector = 3|5|7|9|11|17][, kernel = composition|lazy]"
                               "[, coordinates = democratic_heliocentric|jacobi])";
-    std::string inner_name = name.substr(3, name.size() - 4);
+    const std::set<std::string> keys = {"corrector", "kernel", "coordinates"};
+    std::string inner_name = call.inside;
     method_spec m = spec(name, method_kind::wisdom_holman);
-    // Options from the right, `key = value`; what is left is the table's name
-    // (an inline table's name may itself hold commas).
     std::set<std::string> seen;
-    for (auto comma = inner_name.rfind(','); comma != std::string::npos; comma = inner_name.rfind(',')) {
-        const std::string option = trimmed(inner_name.substr(comma + 1));
-        const auto equals = option.find('=');
-        const std::string key = trimmed(option.substr(0, equals)), value = equals == std::string::npos ? "" : trimmed(option.substr(equals + 1));
-        if (key != "corrector" && key != "kernel" && key != "coordinates") {
+    for (auto split = split_last(inner_name); split; split = split_last(inner_name)) {
+        const method_option option = option_of(split->argument);
+        if (!keys.count(option.key)) {
             // Part of an inline table's name (which may hold commas), or a misspelt option.
-            if (equals != std::string::npos && !resolve_method(trimmed(inner_name), inline_tables))
-                throw invalid_argument("method '" + name + "': unknown option '" + key + "'; " +
-                                       did_you_mean(key, {"corrector", "kernel", "coordinates"}) +
+            if (option.value && !resolve_method(inner_name, inline_tables))
+                throw invalid_argument("method '" + name + "': unknown option '" + option.key + "'; " +
+                                       did_you_mean(option.key, {"corrector", "kernel", "coordinates"}) +
                                        "expected corrector, kernel or coordinates" + usage);
             break;
         }
-        if (equals == std::string::npos || value.empty())
-            throw invalid_argument("method '" + name + "': option '" + option + "' has no value" + usage);
-        if (!seen.insert(key).second) throw invalid_argument("method '" + name + "': '" + key + "' given twice" + usage);
-        if (key == "corrector") {
-            const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), m.corrector_order);
-            if (error != std::errc{} || end != value.data() + value.size() || m.corrector_order < 1)
-                throw invalid_argument("method '" + name + "': corrector = '" + value + "'" + usage);
-        } else if (key == "coordinates") {
-            if (value == "jacobi") m.jacobi = true;
-            else if (value != "democratic_heliocentric")
-                throw invalid_argument("method '" + name + "': coordinates = '" + value + "'; " +
-                                       did_you_mean(value, {"democratic_heliocentric", "jacobi"}) + usage.substr(2));
-        } else if (value == "composition") {
-            m.composition_kernel = true;
-        } else if (value == "lazy") {
-            m.lazy_kernel = true;
-        } else if (value != "kick") {
-            throw invalid_argument("method '" + name + "': kernel = '" + value + "'; " +
-                                   did_you_mean(value, {"composition", "lazy", "kick"}) + usage.substr(2));
-        }
-        inner_name = inner_name.substr(0, comma);
+        if (!option.value || option.value->empty())
+            throw invalid_argument("method '" + name + "': option '" + split->argument + "' has no value" + usage);
+        if (!seen.insert(option.key).second)
+            throw invalid_argument("method '" + name + "': '" + option.key + "' given twice" + usage);
+        wisdom_holman_option(m, name, option.key, *option.value, usage);
+        inner_name = split->before;
     }
-    inner_name = trimmed(inner_name);
-    const auto inner = resolve_method(inner_name, inline_tables);
-    if (!inner || inner->kind != method_kind::table || inner->extrapolation_columns || inner->compensated ||
-        inner->coefficients->has_force_gradient())
-        throw invalid_argument("method '" + name + "': '" + inner_name + "' is not a plain table; " +
-                               nearest_table(inner_name, inline_tables) + usage.substr(2));
-    m.coefficients = inner->coefficients;
+    m.coefficients = inner_table(name, inner_name, usage, inline_tables, false);
     plan_wisdom_holman(*m.coefficients, wisdom_holman_options_of(m), "method '" + name + "'");  // throws naming the misfit
     return m;
 }
@@ -230,14 +231,11 @@ method_spec wisdom_holman(const std::string& name, const std::map<std::string, t
 std::string did_you_mean_method(const std::string& name, const std::map<std::string, table>& inline_tables) {
     // logh(<table>) and compensated(<table>) resolve to nothing when their
     // table is unknown: the same pattern around the nearest table.
-    for (const std::string prefix : {"logh(", "compensated("}) {
-        if (name.size() <= prefix.size() || name.rfind(prefix, 0) != 0 || name.back() != ')') continue;
-        const std::string inner = trimmed(name.substr(prefix.size(), name.size() - prefix.size() - 1));
-        const std::vector<std::string> near = near_names(inner, table_names(inline_tables));
-        if (near.empty()) return "";
-        return "did you mean '" + prefix + near.front() + ")'? ";
-    }
-    return "";
+    const auto call = call_of(name);
+    if (!call || (call->head != "logh" && call->head != "compensated")) return "";
+    const std::vector<std::string> near = near_names(call->inside, table_names(inline_tables));
+    if (near.empty()) return "";
+    return "did you mean '" + call->head + "(" + near.front() + ")'? ";
 }
 
 wisdom_holman_options wisdom_holman_options_of(const method_spec& m) {
@@ -272,17 +270,18 @@ std::optional<method_spec> resolve_method(const std::string& name, const std::ma
         throw invalid_argument("method " + quoted_start(name) + " nests its parentheses " + std::to_string(depth) +
                                " deep; expected at most " + std::to_string(max_method_nesting) +
                                " (extrapolated(logh(leapfrog_dkd), 6) nests 2 deep)");
-    if (name.size() > 14 && name.rfind("extrapolated(", 0) == 0 && name.back() == ')') return extrapolated(name, inline_tables);
+    const std::optional<method_call> call = call_of(name);
+    if (call && call->head == "extrapolated") return extrapolated(name, call->inside, inline_tables);
     if (auto it = inline_tables.find(name); it != inline_tables.end()) return spec(name, method_kind::table, it->second);
-    if (name.size() > 13 && name.rfind("compensated(", 0) == 0 && name.back() == ')') {
-        auto inner = resolve_method(name.substr(12, name.size() - 13), inline_tables);
+    if (call && call->head == "compensated") {
+        auto inner = resolve_method(call->inside, inline_tables);
         if (!inner || inner->kind != method_kind::table || inner->extrapolation_columns) return std::nullopt;
         inner->name = name;
         inner->compensated = true;
         return inner;
     }
-    if (name.size() > 6 && name.rfind("logh(", 0) == 0 && name.back() == ')') {
-        auto inner = resolve_method(name.substr(5, name.size() - 6), inline_tables);
+    if (call && call->head == "logh") {
+        auto inner = resolve_method(call->inside, inline_tables);
         if (!inner || inner->kind != method_kind::table) return std::nullopt;
         // LogH's extended Hamiltonian has no force derivative of its own.
         if (inner->coefficients->has_force_gradient())
@@ -290,15 +289,14 @@ std::optional<method_spec> resolve_method(const std::string& name, const std::ma
                                    "' has force-gradient kicks; expected logh(<table without them>)");
         return spec(name, method_kind::logh, inner->coefficients);
     }
-    if (name.size() > 4 && name.rfind("wh(", 0) == 0 && name.back() == ')') return wisdom_holman(name, inline_tables);
-    if (name.size() > 5 && name.rfind("tao(", 0) == 0 && name.back() == ')')
-        return on_extended_phase_space(name, method_kind::tao, 4, inline_tables);
-    if (name.size() > 14 && name.rfind("semiexplicit(", 0) == 0 && name.back() == ')')
-        return on_extended_phase_space(name, method_kind::semiexplicit, 13, inline_tables);
-    if (name.size() > 17 && name.rfind("cartesian_split(", 0) == 0 && name.back() == ')')
-        return charged_split(name, charged_scheme::cartesian_split, 16, inline_tables);
-    if (name.size() > 19 && name.rfind("cylindrical_split(", 0) == 0 && name.back() == ')')
-        return charged_split(name, charged_scheme::cylindrical_split, 18, inline_tables);
+    if (call && call->head == "wh") return wisdom_holman(name, *call, inline_tables);
+    if (call && call->head == "tao") return on_extended_phase_space(name, method_kind::tao, *call, inline_tables);
+    if (call && call->head == "semiexplicit")
+        return on_extended_phase_space(name, method_kind::semiexplicit, *call, inline_tables);
+    if (call && call->head == "cartesian_split")
+        return charged_split(name, charged_scheme::cartesian_split, *call, inline_tables);
+    if (call && call->head == "cylindrical_split")
+        return charged_split(name, charged_scheme::cylindrical_split, *call, inline_tables);
     for (const method_kind_entry& k : method_kind_entries)
         for (const named_method& member : k.members)
             if (name == member.name) {
