@@ -27,7 +27,7 @@
 #include <sympl/interop/odeint.hpp>
 #include <sympl/sympl.hpp>
 
-#include "general_system.hpp"
+#include "running/general_system.hpp"
 
 using namespace sympl;
 namespace odeint = boost::numeric::odeint;

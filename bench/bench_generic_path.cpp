@@ -1,6 +1,6 @@
-// The program's generic path against its compiled one (src/generic_path.hpp):
+// The program's generic path against its compiled one (src/running/generic_path.hpp):
 // the same method, step and span through each, timed side by side in one
-// process, rounds interleaved, with the program's own timing (src/timing.hpp).
+// process, rounds interleaved, with the program's own timing (src/report/timing.hpp).
 // Built as the program is (CMake's Release flags, no -march): it links the
 // program's library, whose runs these are.
 //   bench_generic_path            FPU-beta N = 32 and Henon-Heiles, 4 methods each
@@ -14,8 +14,8 @@
 #include <sympl/hamiltonians/fpu_beta.hpp>
 #include <sympl/hamiltonians/henon_heiles.hpp>
 
-#include "generic_path.hpp"
-#include "systems.hpp"
+#include "running/generic_path.hpp"
+#include "running/systems.hpp"
 
 using namespace sympl::app;
 

@@ -142,7 +142,7 @@ double hand_time(const sympl::test_particle_set<double>& p, std::size_t steps) {
 }
 
 // The planets with and without 10^4 particles over 10^5 years, the
-// particles removed as `sympl run` removes them (src/run_test_particles.cpp):
+// particles removed as `sympl run` removes them (src/commands/run_test_particles.cpp):
 // within a planet's Hill radius (where a Kepler orbit about the star
 // perturbed no longer describes them), within the Sun's radius, or past
 // 100 AU. The cost per particle-step counts the particles alive at the end

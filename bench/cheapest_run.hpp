@@ -7,13 +7,13 @@
 #include <optional>
 #include <vector>
 
-#include "timing.hpp"
+#include "report/timing.hpp"
 
 namespace sympl::bench {
 
 // Median over `repeats` of the time per call of f, each repeat calling f
 // until at least `least` seconds have passed: the program's one timing
-// procedure (src/timing.hpp).
+// procedure (src/report/timing.hpp).
 inline double seconds_of(const std::function<void()>& f, int repeats, double least = 0.02) {
     return app::time_per_call(f, repeats, least).median;
 }

@@ -19,16 +19,16 @@
 
 #include <sympl/core/error.hpp>
 
-#include "check_table.hpp"
-#include "ensemble_run.hpp"
-#include "interrupt.hpp"
-#include "listings.hpp"
-#include "mpi_exchange.hpp"
-#include "near_names.hpp"
-#include "report.hpp"
-#include "run_scene.hpp"
-#include "scene.hpp"
-#include "run_test_particles.hpp"
+#include "commands/check_table.hpp"
+#include "commands/ensemble_run.hpp"
+#include "output/interrupt.hpp"
+#include "commands/listings.hpp"
+#include "output/mpi_exchange.hpp"
+#include "reading/near_names.hpp"
+#include "report/report.hpp"
+#include "commands/run_scene.hpp"
+#include "reading/scene.hpp"
+#include "commands/run_test_particles.hpp"
 
 namespace {
 

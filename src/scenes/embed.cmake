@@ -15,7 +15,7 @@ foreach(file IN LISTS SCENES)
   string(APPEND body "        {\"${name}\", R\"sympl_scene(${text})sympl_scene\"},\n")
 endforeach()
 file(WRITE "${OUTPUT}.new" "// Generated from src/scenes/*.toml by src/scenes/embed.cmake; edit those files instead.
-#include \"scene.hpp\"
+#include \"reading/scene.hpp\"
 
 namespace sympl::app {
 

@@ -7,10 +7,10 @@
 #include <cmath>
 #include <optional>
 
-#include "format.hpp"
-#include "report_write.hpp"
-#include "work_precision.hpp"
-#include "writers.hpp"
+#include "output/format.hpp"
+#include "report/report_write.hpp"
+#include "report/work_precision.hpp"
+#include "output/writers.hpp"
 
 namespace sympl::app {
 

@@ -8,9 +8,9 @@
 #include <sympl/sympl.hpp>
 #include <sympl/hamiltonians/kepler.hpp>
 
-#include "format.hpp"
-#include "systems.hpp"
-#include "writers.hpp"
+#include "output/format.hpp"
+#include "running/systems.hpp"
+#include "output/writers.hpp"
 
 namespace sympl::app {
 

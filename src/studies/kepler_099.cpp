@@ -8,8 +8,8 @@
 #include <sympl/sympl.hpp>
 #include <sympl/hamiltonians/kepler.hpp>
 
-#include "format.hpp"
-#include "writers.hpp"
+#include "output/format.hpp"
+#include "output/writers.hpp"
 
 namespace sympl::app {
 

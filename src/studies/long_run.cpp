@@ -7,8 +7,8 @@
 #include <sympl/sympl.hpp>
 #include <sympl/hamiltonians/pendulum.hpp>
 
-#include "format.hpp"
-#include "writers.hpp"
+#include "output/format.hpp"
+#include "output/writers.hpp"
 
 namespace sympl::app {
 

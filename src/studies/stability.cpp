@@ -8,8 +8,8 @@
 #include <sympl/hamiltonians/harmonic_oscillator.hpp>
 #include <sympl/hamiltonians/stiff_fpu.hpp>
 
-#include "format.hpp"
-#include "writers.hpp"
+#include "output/format.hpp"
+#include "output/writers.hpp"
 
 namespace sympl::app {
 

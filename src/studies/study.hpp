@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "scene.hpp"
+#include "reading/scene.hpp"
 
 namespace sympl::app {
 

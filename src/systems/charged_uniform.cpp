@@ -4,8 +4,8 @@
 
 #include <sympl/hamiltonians/charged_uniform.hpp>
 
-#include "../model.hpp"
-#include "../systems.hpp"
+#include "running/model.hpp"
+#include "running/systems.hpp"
 
 namespace sympl::app {
 

@@ -1,8 +1,8 @@
 // The registry entry of the damped, driven oscillator (see systems.hpp): its own translation unit.
 #include <sympl/hamiltonians/damped_driven_oscillator.hpp>
 
-#include "../model.hpp"
-#include "../systems.hpp"
+#include "running/model.hpp"
+#include "running/systems.hpp"
 
 namespace sympl::app {
 

@@ -2,8 +2,8 @@
 // (see systems.hpp): its own translation unit. H(q, p) does not split.
 #include <sympl/hamiltonians/double_pendulum.hpp>
 
-#include "../model.hpp"
-#include "../systems.hpp"
+#include "running/model.hpp"
+#include "running/systems.hpp"
 
 namespace sympl::app {
 

@@ -1,8 +1,8 @@
 // The registry entry of the FPU beta chain (see systems.hpp): its own translation unit.
 #include <sympl/hamiltonians/fpu_beta.hpp>
 
-#include "../model.hpp"
-#include "../systems.hpp"
+#include "running/model.hpp"
+#include "running/systems.hpp"
 
 #include <cmath>
 #include <numbers>

@@ -1,10 +1,10 @@
 // The registry entry of the plane Kepler problem (see systems.hpp): its own translation unit.
 #include <sympl/hamiltonians/kepler.hpp>
 
-#include "../model.hpp"
-#include "../systems.hpp"
+#include "running/model.hpp"
+#include "running/systems.hpp"
 
-#include "../format.hpp"
+#include "output/format.hpp"
 
 namespace sympl::app {
 

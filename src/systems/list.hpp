@@ -3,7 +3,7 @@
 // one line each (the entry itself is in systems/<name>.cpp).
 #include <vector>
 
-#include "../systems.hpp"
+#include "running/systems.hpp"
 
 namespace sympl::app {
 

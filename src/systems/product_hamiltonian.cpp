@@ -2,8 +2,8 @@
 // problem of Tao 2016 (see systems.hpp): its own translation unit.
 #include <sympl/hamiltonians/product_hamiltonian.hpp>
 
-#include "../model.hpp"
-#include "../systems.hpp"
+#include "running/model.hpp"
+#include "running/systems.hpp"
 
 namespace sympl::app {
 

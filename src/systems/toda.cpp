@@ -1,8 +1,8 @@
 // The registry entry of the periodic Toda lattice (see systems.hpp): its own translation unit.
 #include <sympl/hamiltonians/toda.hpp>
 
-#include "../model.hpp"
-#include "../systems.hpp"
+#include "running/model.hpp"
+#include "running/systems.hpp"
 
 #include <cmath>
 #include <numbers>

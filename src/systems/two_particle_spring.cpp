@@ -1,8 +1,8 @@
 // The registry entry of two particles on a spring (see systems.hpp): its own translation unit.
 #include <sympl/hamiltonians/two_particle_spring.hpp>
 
-#include "../model.hpp"
-#include "../systems.hpp"
+#include "running/model.hpp"
+#include "running/systems.hpp"
 
 namespace sympl::app {
 

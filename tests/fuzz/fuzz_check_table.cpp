@@ -13,7 +13,7 @@
 #include <sympl/analysis/order_conditions.hpp>
 #include <sympl/core/table.hpp>
 
-#include "coefficient_list.hpp"
+#include "reading/coefficient_list.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string text(reinterpret_cast<const char*>(data), size);

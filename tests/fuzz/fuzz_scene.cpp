@@ -8,8 +8,8 @@
 
 #include <sympl/core/error.hpp>
 
-#include "run_plan.hpp"
-#include "scene.hpp"
+#include "methods/run_plan.hpp"
+#include "reading/scene.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     if (size > sympl::app::max_scene_bytes) return 0;  // load_scene refuses these before parsing

@@ -9,7 +9,7 @@
 
 #include <sympl/core/error.hpp>
 
-#include "checkpoint.hpp"
+#include "output/checkpoint.hpp"
 #include "scratch_directory.hpp"
 
 namespace test_program_test_checkpoint {  // one per file: the tests build in batches (CMakeLists.txt)

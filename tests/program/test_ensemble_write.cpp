@@ -11,13 +11,13 @@
 
 #include <sympl/core/error.hpp>
 
-#include "ensemble_run.hpp"
-#include "format.hpp"
-#include "problem.hpp"
-#include "run_plan.hpp"
-#include "scene.hpp"
+#include "commands/ensemble_run.hpp"
+#include "output/format.hpp"
+#include "running/problem.hpp"
+#include "methods/run_plan.hpp"
+#include "reading/scene.hpp"
 #include "scratch_directory.hpp"
-#include "systems.hpp"
+#include "running/systems.hpp"
 
 namespace test_program_test_ensemble_write {  // one per file: the tests build in batches (CMakeLists.txt)
 

@@ -7,9 +7,9 @@
 #include <sstream>
 #include <string>
 
-#include "run_scene.hpp"
-#include "scene.hpp"
-#include "systems.hpp"
+#include "commands/run_scene.hpp"
+#include "reading/scene.hpp"
+#include "running/systems.hpp"
 
 namespace test_program_test_general_systems {  // one per file: the tests build in batches (CMakeLists.txt)
 

@@ -1,4 +1,4 @@
-// The generic path (src/generic_path.hpp): every (system, kind) pair of the
+// The generic path (src/running/generic_path.hpp): every (system, kind) pair of the
 // built-in scenes is compiled for its system; a pair that is not runs through
 // the type-erased system, is marked, and gives what the compiled path gives
 // for the same method and steps.
@@ -11,9 +11,9 @@
 #include <sympl/hamiltonians/fpu_beta.hpp>
 #include <sympl/hamiltonians/pendulum.hpp>
 
-#include "generic_path.hpp"
-#include "scene.hpp"
-#include "systems.hpp"
+#include "running/generic_path.hpp"
+#include "reading/scene.hpp"
+#include "running/systems.hpp"
 
 namespace test_program_test_generic_path {  // one per file: the tests build in batches (CMakeLists.txt)
 

@@ -20,11 +20,11 @@
 
 #include <sympl/core/error.hpp>
 
-#include "checkpoint.hpp"
-#include "ensemble_checkpoint.hpp"
-#include "ensemble_run.hpp"
-#include "run_scene.hpp"
-#include "scene.hpp"
+#include "output/checkpoint.hpp"
+#include "output/ensemble_checkpoint.hpp"
+#include "commands/ensemble_run.hpp"
+#include "commands/run_scene.hpp"
+#include "reading/scene.hpp"
 #include "scratch_directory.hpp"
 
 namespace test_program_test_kill_and_resume {  // one per file: the tests build in batches (CMakeLists.txt)

@@ -14,9 +14,9 @@
 #include <sympl/methods/catalog.hpp>
 #include <sympl/methods/classic_steppers.hpp>
 
-#include "checkpoint.hpp"
-#include "method_kinds.hpp"
-#include "systems.hpp"
+#include "output/checkpoint.hpp"
+#include "methods/method_kinds.hpp"
+#include "running/systems.hpp"
 
 namespace test_program_test_method_kinds {  // one per file: the tests build in batches (CMakeLists.txt)
 

@@ -2,7 +2,7 @@
 // parentheses, key = value. What each head means is test_method_kinds.cpp's.
 #include <doctest/doctest.h>
 
-#include "method_name.hpp"
+#include "methods/method_name.hpp"
 
 namespace test_program_test_method_name {  // one per file: the tests build in batches (CMakeLists.txt)
 

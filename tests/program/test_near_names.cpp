@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "near_names.hpp"
+#include "reading/near_names.hpp"
 
 namespace test_program_test_near_names {  // one per file: the tests build in batches (CMakeLists.txt)
 

@@ -9,7 +9,7 @@
 
 #include <sympl/core/error.hpp>
 
-#include "output_set.hpp"
+#include "output/output_set.hpp"
 #include "scratch_directory.hpp"
 
 namespace test_program_test_output_set {  // one per file: the tests build in batches (CMakeLists.txt)

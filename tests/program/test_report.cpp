@@ -13,9 +13,9 @@
 
 #include "read_csv.hpp"
 #include "scratch_directory.hpp"
-#include "report.hpp"
-#include "scene.hpp"
-#include "writers.hpp"
+#include "report/report.hpp"
+#include "reading/scene.hpp"
+#include "output/writers.hpp"
 
 namespace test_program_test_report {  // one per file: the tests build in batches (CMakeLists.txt)
 

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <string>
 
-#include "systems.hpp"
+#include "running/systems.hpp"
 
 namespace test_program_test_run_charged {  // one per file: the tests build in batches (CMakeLists.txt)
 

@@ -14,8 +14,8 @@
 
 #include "read_csv.hpp"
 #include "scratch_directory.hpp"
-#include "run_plan.hpp"
-#include "run_scene.hpp"
+#include "methods/run_plan.hpp"
+#include "commands/run_scene.hpp"
 
 namespace test_program_test_run_scene {  // one per file: the tests build in batches (CMakeLists.txt)
 

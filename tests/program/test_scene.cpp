@@ -11,8 +11,8 @@
 #include <fstream>
 #include <string>
 
-#include "run_plan.hpp"
-#include "scene.hpp"
+#include "methods/run_plan.hpp"
+#include "reading/scene.hpp"
 
 namespace test_program_test_scene {  // one per file: the tests build in batches (CMakeLists.txt)
 

@@ -7,8 +7,8 @@
 
 #include <sympl/methods/catalog.hpp>
 
-#include "method_kinds.hpp"
-#include "systems.hpp"
+#include "methods/method_kinds.hpp"
+#include "running/systems.hpp"
 
 namespace test_program_test_systems {  // one per file: the tests build in batches (CMakeLists.txt)
 

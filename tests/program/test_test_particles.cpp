@@ -15,15 +15,15 @@
 #include <sstream>
 #include <string>
 
-#include "scene.hpp"
+#include "reading/scene.hpp"
 #include "scratch_directory.hpp"
-#include "ensemble_run.hpp"
-#include "row_checkpoint.hpp"
-#include "run_test_particles.hpp"
-#include "format.hpp"
-#include "run_plan.hpp"
-#include "report.hpp"
-#include "writers.hpp"
+#include "commands/ensemble_run.hpp"
+#include "output/row_checkpoint.hpp"
+#include "commands/run_test_particles.hpp"
+#include "output/format.hpp"
+#include "methods/run_plan.hpp"
+#include "report/report.hpp"
+#include "output/writers.hpp"
 
 namespace test_program_test_test_particles {  // one per file: the tests build in batches (CMakeLists.txt)
 

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "work_precision.hpp"
+#include "report/work_precision.hpp"
 
 namespace test_program_test_work_precision {  // one per file: the tests build in batches (CMakeLists.txt)
 

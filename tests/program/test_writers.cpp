@@ -11,7 +11,7 @@
 
 #include "read_csv.hpp"
 #include "scratch_directory.hpp"
-#include "writers.hpp"
+#include "output/writers.hpp"
 
 namespace test_program_test_writers {  // one per file: the tests build in batches (CMakeLists.txt)
 

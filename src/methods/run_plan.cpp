@@ -1,0 +1,85 @@
+// The run plan of a scene: its runs, steps and reference, once.
+#include "methods/run_plan.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "output/format.hpp"
+#include "running/systems.hpp"
+
+namespace sympl::app {
+
+run_request planned_run::request() const {
+    run_request rq;
+    rq.dt = dt;
+    rq.tolerance = tolerance;
+    return rq;
+}
+
+std::size_t run_plan::sweep_length(const scene_method& m) const {
+    return std::size_t(std::count_if(runs.begin(), runs.end(), [&](const planned_run& r) { return r.method == &m; }));
+}
+
+const std::vector<double>& sweep_of(const scene& s, const scene_method& m) {
+    if (adaptive(m)) return m.tolerances.empty() ? s.tolerances : m.tolerances;
+    return m.dt.empty() ? s.dt : m.dt;
+}
+
+run_plan plan_runs(const scene& s, const problem& p, sweep_use use) {
+    run_plan plan{.s = &s, .use = use};
+    const double span = s.t_end - s.t0;
+    double finest = HUGE_VAL;
+    for (const scene_method& m : s.methods) {
+        const auto& sweep = sweep_of(s, m);
+        const std::size_t count = use == sweep_use::whole ? sweep.size() : 1;
+        const bool controlled = adaptive(m), physical = steps_in_physical_time(m);
+        // extrapolated(<table>, k) runs 1 + 2 + ... + k steps per step.
+        const double inner = m.extrapolation_columns > 0
+                                 ? double(m.extrapolation_columns) * double(m.extrapolation_columns + 1) / 2
+                                 : 1.0;
+        for (std::size_t i = 0; i < count; ++i) {
+            planned_run r{.method = &m, .dt = controlled ? 0.0 : sweep[i], .tolerance = controlled ? sweep[i] : 0.0};
+            if (physical) {
+                r.steps = std::ceil(span / sweep[i]) * inner;
+                finest = std::min(finest, sweep[i]);
+            }
+            plan.runs.push_back(r);
+        }
+    }
+    plan.finest_dt = std::isfinite(finest) ? finest : use == sweep_use::whole ? s.dt.back() : s.dt.front();
+    if (!p.exact) {
+        // The reference (reference.hpp) runs at a quarter and at half of the finest step.
+        plan.reference_dt = plan.finest_dt / 4;
+        plan.reference_steps = std::ceil(span / plan.reference_dt) * 1.5;
+    }
+    return plan;
+}
+
+void check_run_size(const run_plan& plan, double max_steps) {
+    const scene& s = *plan.s;
+    const auto refuse = [&](const std::string& what, double dt, double steps) {
+        throw scene_error(s.source + ": " + what + " at dt = " + shortest(dt) + " over t = " + shortest(s.t0) + " .. " +
+                          shortest(s.t_end) + " takes " + format_number(steps, 3) + " steps; the limit is " +
+                          format_number(max_steps, 3) + " (raise it with --max-steps)");
+    };
+    for (const planned_run& r : plan.runs)
+        if (!(r.steps <= max_steps)) refuse("method '" + r.method->name + "'", r.dt, r.steps);
+    if (plan.reference_dt > 0 && !(plan.reference_steps <= max_steps))
+        refuse("the reference (its dt is a quarter of the finest step, " + shortest(plan.finest_dt) + ")",
+               plan.reference_dt, plan.reference_steps);
+}
+
+problem problem_of(const scene& s) {
+    problem p = make_problem(s.system, s.parameters, s.q0, s.p0, s.source);
+    // An energy that is already infinite (q at a singularity, 1e308 squared)
+    // would make every energy error read 0 or NaN.
+    if (p.energy)
+        if (const double e0 = p.energy(p.x0); !std::isfinite(e0))
+            throw scene_error(s.source + ": the initial state of " + s.system + " has energy H = " + shortest(e0) +
+                              "; expected a state of finite energy");
+    for (const method_spec& m : s.methods)
+        if (const std::string why = why_not(m, p.form); !why.empty()) throw scene_error(s.source + ": " + why);
+    return p;
+}
+
+}  // namespace sympl::app

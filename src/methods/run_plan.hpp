@@ -1,0 +1,54 @@
+#pragma once
+// What a scene's runs are, worked out once: every (method, dt or tolerance)
+// run, the finest physical step, the reference's step and the step counts.
+// The size check, the reference, `sympl run` and `sympl report` all read the
+// plan; none works the sweeps out again.
+#include <cstddef>
+#include <vector>
+
+#include "running/problem.hpp"
+#include "reading/scene.hpp"
+
+namespace sympl::app {
+
+// `sympl run` takes the first value of each method's sweep; `sympl report` takes them all.
+enum class sweep_use { first, whole };
+
+struct planned_run {
+    const scene_method* method = nullptr;
+    double dt = 0;         // fixed-step methods (logh: the fictitious step); 0 for adaptive ones
+    double tolerance = 0;  // adaptive Odeint methods; 0 for the others
+    // Steps the run takes (an extrapolated method's inner steps counted);
+    // 0 where the method chooses its own (adaptive, LogH).
+    double steps = 0;
+    double setting() const { return dt > 0 ? dt : tolerance; }  // the sweep's value
+    // The request for this run's measured (observed) run.
+    run_request request() const;
+};
+
+struct run_plan {
+    const scene* s = nullptr;
+    sweep_use use = sweep_use::first;
+    std::vector<planned_run> runs{};  // in the scene's method order, each sweep largest first
+    double finest_dt = 0;           // the smallest physical step of the runs (the scene's dt if none has one)
+    double reference_dt = 0;        // a quarter of finest_dt; 0 when the system is exact
+    double reference_steps = 0;     // of the reference's two runs (reference.hpp), together
+    std::size_t sweep_length(const scene_method& m) const;  // how many of its values run
+};
+
+// The step sizes (or, for adaptive kinds, tolerances) the method is swept over, largest first.
+const std::vector<double>& sweep_of(const scene& s, const scene_method& m);
+
+run_plan plan_runs(const scene& s, const problem& p, sweep_use use);
+
+// Refuses, with the figures, a plan whose runs would take more than
+// max_steps steps each: every fixed-step method at every step size it will
+// use, an extrapolated method counting its inner steps, and the reference
+// run. LogH and adaptive methods choose their own steps and are not counted.
+void check_run_size(const run_plan& plan, double max_steps);
+
+// The scene's system as a problem, every method checked against it: a method
+// it cannot run is a scene_error before anything runs or is written.
+problem problem_of(const scene& s);
+
+}  // namespace sympl::app

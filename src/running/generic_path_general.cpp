@@ -1,0 +1,23 @@
+// The generic path of any H(q, p) (generic_path.hpp): every kind it runs and
+// the reference, compiled once for general_system<erased_general>; a unit of
+// its own, so that it builds beside the separable one (generic_path.cpp).
+#include "running/generic_path.hpp"
+
+#include "running/model.hpp"
+
+namespace sympl::app::detail {
+
+run_function generic_run(erased_general h, energy_function energy) {
+    return generic_runner(general_system<erased_general>{std::move(h)}, std::move(energy));
+}
+
+generic_parts generic_general(erased_general h, energy_function energy) {
+    general_system<erased_general> sys{std::move(h)};
+    return {.run = generic_run(sys.h, std::move(energy)),
+            .reference_method = gauss_reference_method,
+            .reference = reference_by_gauss(sys),
+            .ensemble = {},  // ensembles and sections run splitting tables: separable systems only
+            .section = {}};
+}
+
+}  // namespace sympl::app::detail

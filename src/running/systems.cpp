@@ -1,0 +1,135 @@
+// The systems the program knows: one entry each (see systems.hpp).
+#include "running/systems.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "output/format.hpp"
+#include "reading/near_names.hpp"
+#include "systems/list.hpp"
+
+namespace sympl::app {
+
+namespace {
+const std::vector<system_entry>& registry() {
+    static const std::vector<system_entry> entries = every_system_entry();
+    return entries;
+}
+}  // namespace
+
+bool parameter::accepts(double v) const {
+    if (!std::isfinite(v)) return false;
+    if (v < low || (low_open && v == low) || v > high || (high_open && v == high)) return false;
+    return !integer || v == std::floor(v);
+}
+
+std::string parameter::expected() const {
+    const std::string what = integer ? "an integer" : "a finite number";
+    const auto shortest = [this](double v) { return integer ? std::to_string(std::int64_t(v)) : app::shortest(v); };
+    const bool bounded_below = std::isfinite(low), bounded_above = std::isfinite(high);
+    if (bounded_below && bounded_above)
+        return what + " in " + (low_open ? "(" : "[") + shortest(low) + ", " + shortest(high) +
+               (high_open ? ")" : "]");
+    if (bounded_below) return what + (low_open ? " > " : " >= ") + shortest(low);
+    if (bounded_above) return what + (high_open ? " < " : " <= ") + shortest(high);
+    return what;
+}
+
+const parameter* system_entry::find(const std::string& parameter_name) const {
+    for (const auto& p : parameters)
+        if (p.name == parameter_name) return &p;
+    return nullptr;
+}
+
+const std::vector<system_entry>& systems() { return registry(); }
+
+const system_entry* find_system(const std::string& name) {
+    for (const auto& s : registry())
+        if (s.name == name) return &s;
+    return nullptr;
+}
+
+std::vector<std::string> system_names() {
+    std::vector<std::string> names;
+    for (const auto& s : registry()) names.push_back(s.name);
+    return names;
+}
+
+double period_of(const system_entry& entry, const parameter_values& values) {
+    if (!entry.period.value) return 0;
+    const double t = entry.period.value(values);
+    return std::isfinite(t) && t > 0 ? t : 0;
+}
+
+std::vector<std::string> state_columns(const std::string& system, std::size_t degrees_of_freedom) {
+    const system_entry* entry = find_system(system);
+    std::vector<std::string> columns;
+    if (entry && entry->coordinate_names.size() == degrees_of_freedom) {
+        for (const auto& q : entry->coordinate_names) columns.push_back(q);
+        for (const auto& q : entry->coordinate_names) {  // "jupiter_x" -> "jupiter_px"
+            const auto cut = q.rfind('_');
+            columns.push_back(cut == std::string::npos ? "p_" + q : q.substr(0, cut + 1) + "p" + q.substr(cut + 1));
+        }
+        return columns;
+    }
+    for (const char* coordinate : {"q", "p"})
+        for (std::size_t i = 1; i <= degrees_of_freedom; ++i) columns.push_back(coordinate + std::to_string(i));
+    return columns;
+}
+
+parameter_values with_defaults(const system_entry& entry, const parameter_values& given, const std::string& where) {
+    parameter_values v;
+    for (const auto& p : entry.parameters) v[p.name] = p.value;
+    for (const auto& [name, value] : given) {
+        const parameter* p = entry.find(name);
+        if (!p) {
+            std::vector<std::string> names;
+            for (const auto& q : entry.parameters) names.push_back(q.name);
+            throw invalid_argument(where + ": " + entry.name + " has no parameter '" + name + "'; " +
+                                   expected_one_of(name, names));
+        }
+        if (!p->accepts(value))
+            throw invalid_argument(where + ": " + entry.name + " " + name + " = " + shortest(value) +
+                                   "; expected " + p->expected());
+        v[name] = value;
+    }
+    return v;
+}
+
+problem make_problem(const std::string& system, const parameter_values& given, const std::vector<double>& q0,
+                     const std::vector<double>& p0, const std::string& where) {
+    const system_entry* entry = find_system(system);
+    if (!entry)
+        throw invalid_argument(where + ": unknown system '" + system + "'; " +
+                               expected_one_of(system, system_names()));
+    problem p;
+    try {
+        p = entry->build(with_defaults(*entry, given, where));
+    } catch (const invalid_argument& e) {
+        const std::string what = e.what();
+        throw invalid_argument(what.rfind(where, 0) == 0 ? what : where + ": " + what);
+    }
+    p.system = system;
+    p.form.negative_potential = entry->negative_potential;
+    if (entry->kinetic_not_quadratic) p.form.quadratic_kinetic = false;
+    // What the registry's values add to the type's answers (V < 0, T quadratic)
+    // is refused here, in the registry's words, before the method runs.
+    p.run = [run = std::move(p.run), form = p.form](const method_spec& m, const run_request& rq, double t0,
+                                                    double t_end, const std::vector<double>& x0) {
+        if (const std::string why = why_not(m, form); !why.empty()) throw invalid_argument(why);
+        return run(m, rq, t0, t_end, x0);
+    };
+    if (!q0.empty()) {  // the scene's own initial state: the exact solution no longer applies
+        if (q0.size() != p.degrees_of_freedom || p0.size() != q0.size())
+            throw invalid_argument(where + ": initial q has " + std::to_string(q0.size()) + " and p " +
+                                   std::to_string(p0.size()) + " values; " + system + " expects " +
+                                   std::to_string(p.degrees_of_freedom) + " each");
+        p.x0 = q0;
+        p.x0.insert(p.x0.end(), p0.begin(), p0.end());
+        p.exact = nullptr;
+    }
+    return p;
+}
+
+}  // namespace sympl::app
