@@ -21,7 +21,7 @@
 #include <random>
 #include <vector>
 
-#include <sympl/planetary/kepler_lanes.hpp>
+#include <sympl/planetary/kepler/kepler_lanes.hpp>
 
 namespace {
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }

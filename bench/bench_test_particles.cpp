@@ -1,5 +1,5 @@
 // Cost per test particle per step of the Wisdom-Holman stepper
-// (planetary/test_particles.hpp) on the outer solar system of Hairer, Lubich
+// (planetary/test_particles/test_particles.hpp) on the outer solar system of Hairer, Lubich
 // & Wanner with test particles on near-circular orbits at 6-9 AU, h = 200
 // days, the leapfrog (kick-drift-kick), in democratic heliocentric and Jacobi
 // coordinates: (stepper with N particles - stepper without) / N, against a
@@ -30,8 +30,8 @@
 #include <sympl/hamiltonians/outer_solar_system.hpp>
 #include <sympl/methods/catalog.hpp>
 #include <sympl/planetary/coordinates.hpp>
-#include <sympl/planetary/encounters.hpp>
-#include <sympl/planetary/kepler_drift.hpp>
+#include <sympl/planetary/test_particles/encounters.hpp>
+#include <sympl/planetary/kepler/kepler_drift.hpp>
 #include <sympl/planetary/wisdom_holman_stepper.hpp>
 
 namespace {

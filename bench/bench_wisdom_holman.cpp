@@ -25,7 +25,7 @@
 #include <sympl/core/hamiltonian.hpp>
 #include <sympl/hamiltonians/outer_solar_system.hpp>
 #include <sympl/methods/catalog.hpp>
-#include <sympl/planetary/kepler_lanes.hpp>
+#include <sympl/planetary/kepler/kepler_lanes.hpp>
 #include <sympl/planetary/coordinates.hpp>
 #include <sympl/planetary/wisdom_holman_stepper.hpp>
 

@@ -21,7 +21,7 @@
 #include <tuple>
 
 #include <sympl/parallel/ensemble.hpp>
-#include <sympl/planetary/encounters.hpp>
+#include <sympl/planetary/test_particles/encounters.hpp>
 #include <sympl/planetary/wisdom_holman_stepper.hpp>
 
 #include "reading/csv_numbers.hpp"

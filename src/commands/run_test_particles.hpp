@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include <sympl/planetary/orbital_elements.hpp>
+#include <sympl/planetary/kepler/orbital_elements.hpp>
 
 #include "reading/scene.hpp"
 

@@ -22,8 +22,8 @@
 #include <sympl/core/wide_lanes.hpp>
 #include <sympl/hamiltonians/outer_solar_system.hpp>
 #include <sympl/methods/catalog.hpp>
-#include <sympl/planetary/encounters.hpp>
-#include <sympl/planetary/kepler_lanes.hpp>
+#include <sympl/planetary/test_particles/encounters.hpp>
+#include <sympl/planetary/kepler/kepler_lanes.hpp>
 #include <sympl/planetary/wisdom_holman_stepper.hpp>
 
 namespace test_core_test_wide_lanes {  // one per file: the tests build in batches (CMakeLists.txt)

@@ -38,7 +38,7 @@
 #include <sympl/core/splitting_stepper.hpp>
 #include <sympl/hamiltonians/outer_solar_system.hpp>
 #include <sympl/methods/catalog.hpp>
-#include <sympl/planetary/kepler_drift.hpp>
+#include <sympl/planetary/kepler/kepler_drift.hpp>
 #include <sympl/planetary/wisdom_holman_stepper.hpp>
 
 namespace test_planetary_test_wisdom_holman_stepper {  // one per file: the tests build in batches (CMakeLists.txt)

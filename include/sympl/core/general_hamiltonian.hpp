@@ -14,7 +14,7 @@
 // A kick-drift table needs H = T(p) + V(q) (hamiltonian.hpp): a general
 // Hamiltonian is run by the extended-phase-space methods
 // (methods/extended_phase_space.hpp, semiexplicit.hpp) or the implicit Gauss-Legendre
-// collocation (methods/gauss_collocation.hpp).
+// collocation (methods/gauss/gauss_collocation.hpp).
 #include <concepts>
 #include <utility>
 

@@ -14,7 +14,7 @@
 #include "../core/error.hpp"
 #include "../core/general_hamiltonian.hpp"
 #include "extended_phase_space.hpp"
-#include "gauss_newton.hpp"
+#include "gauss/gauss_newton.hpp"
 
 namespace sympl {
 

@@ -17,7 +17,7 @@
 #include "../analysis/chaos_indicator.hpp"
 #include "../core/dual.hpp"
 #include "../core/error.hpp"
-#include "kepler_tangent.hpp"
+#include "kepler/kepler_tangent.hpp"
 #include "kernels.hpp"
 
 namespace sympl {

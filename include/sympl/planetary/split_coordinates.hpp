@@ -20,7 +20,7 @@
 #include "../core/dual.hpp"
 #include "coordinates.hpp"
 #include "interaction.hpp"
-#include "kepler_lanes.hpp"
+#include "kepler/kepler_lanes.hpp"
 
 namespace sympl {
 

@@ -45,8 +45,8 @@
 #include "coordinates.hpp"
 #include "corrector.hpp"
 #include "split_coordinates.hpp"
-#include "test_particle_run.hpp"
-#include "test_particles.hpp"
+#include "test_particles/test_particle_run.hpp"
+#include "test_particles/test_particles.hpp"
 #include "wisdom_holman_flows.hpp"
 #include "wisdom_holman_plan.hpp"
 

@@ -19,8 +19,8 @@
 
 #include <Eigen/Core>
 
-#include <sympl/planetary/kepler_drift.hpp>
-#include <sympl/planetary/kepler_tangent.hpp>
+#include <sympl/planetary/kepler/kepler_drift.hpp>
+#include <sympl/planetary/kepler/kepler_tangent.hpp>
 
 namespace test_planetary_test_kepler_tangent {  // one per file: the tests build in batches (CMakeLists.txt)
 

@@ -1,5 +1,5 @@
 // The Gauss stepper's options check and its componentwise correction measure
-// (methods/gauss_options.hpp): each component judged against its own half of
+// (methods/gauss/gauss_options.hpp): each component judged against its own half of
 // the state (q or p), not against the largest component, and a NaN kept.
 #include <doctest/doctest.h>
 
@@ -7,7 +7,7 @@
 #include <limits>
 
 #include <sympl/sympl.hpp>
-#include <sympl/methods/gauss_options.hpp>
+#include <sympl/methods/gauss/gauss_options.hpp>
 
 namespace test_methods_test_gauss_options {  // one per file: the tests build in batches (CMakeLists.txt)
 

@@ -13,7 +13,7 @@
 #include <limits>
 #include <utility>
 
-#include "../core/dual.hpp"
+#include "../../core/dual.hpp"
 
 namespace sympl::detail {
 

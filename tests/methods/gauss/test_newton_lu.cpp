@@ -1,4 +1,4 @@
-// The LU factorisation of the Newton matrix (methods/newton_lu.hpp): solves
+// The LU factorisation of the Newton matrix (methods/gauss/newton_lu.hpp): solves
 // against Eigen's own on matrices that need row swaps at several columns
 // (the swaps move the stored multipliers of L, which the solve must honour),
 // and a singular matrix names its pivot.
@@ -9,7 +9,7 @@
 
 #include <Eigen/Dense>
 
-#include <sympl/methods/newton_lu.hpp>
+#include <sympl/methods/gauss/newton_lu.hpp>
 
 namespace test_methods_test_newton_lu {  // one per file: the tests build in batches (CMakeLists.txt)
 

@@ -12,11 +12,11 @@
 #include <type_traits>
 #include <vector>
 
-#include "../analysis/chaos_indicator.hpp"
-#include "../core/carried_state.hpp"
-#include "../core/dual.hpp"
-#include "../core/error.hpp"
-#include "kepler_tangent.hpp"
+#include "../../analysis/chaos_indicator.hpp"
+#include "../../core/carried_state.hpp"
+#include "../../core/dual.hpp"
+#include "../../core/error.hpp"
+#include "../kepler/kepler_tangent.hpp"
 
 namespace sympl {
 

@@ -18,8 +18,8 @@
 
 #include <Eigen/Core>
 
-#include "../core/dual.hpp"
-#include "../core/general_hamiltonian.hpp"
+#include "../../core/dual.hpp"
+#include "../../core/general_hamiltonian.hpp"
 #include "newton_lu.hpp"
 
 namespace sympl::detail {

@@ -25,15 +25,15 @@
 
 #include <Eigen/Core>
 
-#include "../core/carried_state.hpp"
-#include "../core/dual.hpp"
-#include "../core/error.hpp"
-#include "coordinates.hpp"
-#include "interaction.hpp"
-#include "kepler_drift.hpp"
-#include "kepler_lanes.hpp"
-#include "kernels.hpp"
-#include "split_coordinates.hpp"
+#include "../../core/carried_state.hpp"
+#include "../../core/dual.hpp"
+#include "../../core/error.hpp"
+#include "../coordinates.hpp"
+#include "../interaction.hpp"
+#include "../kepler/kepler_drift.hpp"
+#include "../kepler/kepler_lanes.hpp"
+#include "../kernels.hpp"
+#include "../split_coordinates.hpp"
 #include "test_particle_field.hpp"
 #include "test_particle_megno.hpp"
 

@@ -15,11 +15,11 @@
 #include <variant>
 #include <vector>
 
-#include "../core/carried_state.hpp"
+#include "../../core/carried_state.hpp"
 #include "encounters.hpp"
-#include "split_coordinates.hpp"
+#include "../split_coordinates.hpp"
 #include "test_particles.hpp"
-#include "wisdom_holman_plan.hpp"
+#include "../wisdom_holman_plan.hpp"
 
 namespace sympl {
 

@@ -10,7 +10,7 @@
 #include <random>
 
 #include <sympl/core/dual.hpp>
-#include <sympl/planetary/stumpff.hpp>
+#include <sympl/planetary/kepler/stumpff.hpp>
 
 namespace test_planetary_test_stumpff {  // one per file: the tests build in batches (CMakeLists.txt)
 

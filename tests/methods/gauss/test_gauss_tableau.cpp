@@ -7,7 +7,7 @@
 #include <cmath>
 #include <limits>
 
-#include <sympl/methods/gauss_tableau.hpp>
+#include <sympl/methods/gauss/gauss_tableau.hpp>
 
 namespace test_methods_test_gauss_tableau {  // one per file: the tests build in batches (CMakeLists.txt)
 

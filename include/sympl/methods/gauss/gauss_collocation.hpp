@@ -29,14 +29,14 @@
 
 #include <Eigen/Core>
 
-#include "../core/carried_in_place.hpp"
-#include "../core/carried_state.hpp"
-#include "../core/dual.hpp"
-#include "../core/error.hpp"
-#include "../core/general_hamiltonian.hpp"
-#include "../core/hamiltonian.hpp"
-#include "../drivers/fixed_step.hpp"
-#include "../core/phase_space.hpp"
+#include "../../core/carried_in_place.hpp"
+#include "../../core/carried_state.hpp"
+#include "../../core/dual.hpp"
+#include "../../core/error.hpp"
+#include "../../core/general_hamiltonian.hpp"
+#include "../../core/hamiltonian.hpp"
+#include "../../drivers/fixed_step.hpp"
+#include "../../core/phase_space.hpp"
 #include "gauss_options.hpp"
 #include "gauss_stage_iteration.hpp"
 #include "gauss_tableau.hpp"

@@ -24,7 +24,7 @@
 
 #include <Eigen/Core>
 
-#include "../core/error.hpp"
+#include "../../core/error.hpp"
 #include "kepler_equation.hpp"
 
 namespace sympl {

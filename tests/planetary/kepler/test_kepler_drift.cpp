@@ -34,8 +34,8 @@
 
 #include <Eigen/Geometry>
 
-#include <sympl/planetary/kepler_drift.hpp>
-#include <sympl/planetary/kepler_lanes.hpp>
+#include <sympl/planetary/kepler/kepler_drift.hpp>
+#include <sympl/planetary/kepler/kepler_lanes.hpp>
 
 namespace test_planetary_test_kepler_drift {  // one per file: the tests build in batches (CMakeLists.txt)
 

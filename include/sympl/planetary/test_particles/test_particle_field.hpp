@@ -15,9 +15,9 @@
 #include <type_traits>
 #include <vector>
 
-#include "../core/wide_lanes.hpp"
-#include "coordinates.hpp"
-#include "interaction.hpp"
+#include "../../core/wide_lanes.hpp"
+#include "../coordinates.hpp"
+#include "../interaction.hpp"
 
 namespace sympl {
 

@@ -13,10 +13,10 @@
 
 #include <Eigen/Core>
 
-#include "../core/dual.hpp"
-#include "../core/error.hpp"
-#include "../core/general_hamiltonian.hpp"
-#include "../core/hamiltonian.hpp"
+#include "../../core/dual.hpp"
+#include "../../core/error.hpp"
+#include "../../core/general_hamiltonian.hpp"
+#include "../../core/hamiltonian.hpp"
 
 namespace sympl {
 

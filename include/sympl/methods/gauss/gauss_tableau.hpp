@@ -15,7 +15,7 @@
 #include <string>
 #include <utility>
 
-#include "../core/error.hpp"
+#include "../../core/error.hpp"
 
 namespace sympl {
 

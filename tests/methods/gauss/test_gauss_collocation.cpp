@@ -1,4 +1,4 @@
-// Gauss-Legendre collocation (methods/gauss_collocation.hpp) on the three
+// Gauss-Legendre collocation (methods/gauss/gauss_collocation.hpp) on the three
 // non-separable systems of hamiltonians/: their analytic gradients, the orders
 // 2s, symplecticity of the step map to rounding, bounded energy error, and bad input.
 #include <doctest/doctest.h>
@@ -12,7 +12,7 @@
 
 #include <sympl/sympl.hpp>
 #include <sympl/core/general_hamiltonian.hpp>
-#include <sympl/methods/gauss_collocation.hpp>
+#include <sympl/methods/gauss/gauss_collocation.hpp>
 #include <sympl/hamiltonians/charged_particle.hpp>
 #include <sympl/hamiltonians/double_pendulum.hpp>
 #include <sympl/hamiltonians/kepler.hpp>

@@ -18,8 +18,8 @@
 #include <string>
 #include <type_traits>
 
-#include "../core/error.hpp"
-#include "../core/wide_lanes.hpp"
+#include "../../core/error.hpp"
+#include "../../core/wide_lanes.hpp"
 #include "kepler_drift.hpp"
 #include "kepler_equation.hpp"
 #include "stumpff.hpp"

@@ -15,8 +15,8 @@
 #include <Eigen/Geometry>
 
 #include <sympl/hamiltonians/outer_solar_system.hpp>
-#include <sympl/planetary/kepler_drift.hpp>
-#include <sympl/planetary/orbital_elements.hpp>
+#include <sympl/planetary/kepler/kepler_drift.hpp>
+#include <sympl/planetary/kepler/orbital_elements.hpp>
 
 namespace test_planetary_test_orbital_elements {  // one per file: the tests build in batches (CMakeLists.txt)
 

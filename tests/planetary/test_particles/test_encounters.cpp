@@ -28,8 +28,8 @@
 #include <vector>
 
 #include <sympl/methods/catalog.hpp>
-#include <sympl/planetary/encounters.hpp>
-#include <sympl/planetary/kepler_drift.hpp>
+#include <sympl/planetary/test_particles/encounters.hpp>
+#include <sympl/planetary/kepler/kepler_drift.hpp>
 #include <sympl/planetary/wisdom_holman_stepper.hpp>
 
 namespace test_planetary_test_encounters {  // one per file: the tests build in batches (CMakeLists.txt)

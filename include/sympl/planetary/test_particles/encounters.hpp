@@ -21,9 +21,9 @@
 #include <type_traits>
 #include <vector>
 
-#include "../core/error.hpp"
-#include "../core/wide_lanes.hpp"
-#include "../drivers/events.hpp"
+#include "../../core/error.hpp"
+#include "../../core/wide_lanes.hpp"
+#include "../../drivers/events.hpp"
 #include "test_particles.hpp"
 
 namespace sympl {

@@ -16,7 +16,7 @@
 #include <cstddef>
 #include <type_traits>
 
-#include "../core/dual.hpp"
+#include "../../core/dual.hpp"
 #include "kepler_drift.hpp"
 #include "kepler_equation.hpp"
 #include "stumpff.hpp"

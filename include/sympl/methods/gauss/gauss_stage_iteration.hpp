@@ -21,11 +21,11 @@
 
 #include <Eigen/Core>
 
-#include "../core/dual.hpp"
-#include "../core/error.hpp"
-#include "../core/general_hamiltonian.hpp"
-#include "../core/hamiltonian.hpp"
-#include "../core/phase_space.hpp"
+#include "../../core/dual.hpp"
+#include "../../core/error.hpp"
+#include "../../core/general_hamiltonian.hpp"
+#include "../../core/hamiltonian.hpp"
+#include "../../core/phase_space.hpp"
 #include "gauss_newton.hpp"
 #include "gauss_options.hpp"
 #include "gauss_tableau.hpp"

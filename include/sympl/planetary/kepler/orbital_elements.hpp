@@ -12,9 +12,9 @@
 #include <utility>
 #include <vector>
 
-#include "../core/error.hpp"
-#include "coordinates.hpp"
-#include "test_particles.hpp"
+#include "../../core/error.hpp"
+#include "../coordinates.hpp"
+#include "../test_particles/test_particles.hpp"
 
 namespace sympl {
 

@@ -20,7 +20,7 @@
 #include <sympl/core/splitting_stepper.hpp>
 #include <sympl/hamiltonians/outer_solar_system.hpp>
 #include <sympl/methods/catalog.hpp>
-#include <sympl/planetary/test_particles.hpp>
+#include <sympl/planetary/test_particles/test_particles.hpp>
 #include <sympl/planetary/wisdom_holman_stepper.hpp>
 
 namespace test_planetary_test_test_particles {  // one per file: the tests build in batches (CMakeLists.txt)
