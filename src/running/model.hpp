@@ -338,9 +338,9 @@ problem model(Sys sys, std::vector<double> x0, std::function<std::vector<double>
             p.reference = detail::reference_by_rk4(sys);
         }
         if constexpr (detail::runs_any<Sys, methods>())
-            p.run = detail::runner<Sys, Dim, methods>(sys, p.energy, std::move(generic));
+            p.runner = detail::runner<Sys, Dim, methods>(sys, p.energy, std::move(generic));
         else
-            p.run = std::move(generic);
+            p.runner = std::move(generic);
         return p;
     }
 }

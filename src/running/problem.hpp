@@ -116,7 +116,11 @@ struct problem {
     std::vector<double> masses;
     double G = 0;
     std::function<double(const std::vector<double>&)> energy;  // empty when not Hamiltonian
-    run_function run;
+    // A method's run: its requirement asked of `form` once, here (a misfit
+    // throws invalid_argument naming it), then `runner`, which trusts it.
+    run_result run(const method_spec& m, const run_request& rq, double t0, double t_end,
+                   const std::vector<double>& x0) const;
+    run_function runner;  // the system's runs (model.hpp), unchecked
     // The kinds compiled for the system's own type (its registry entry's,
     // model.hpp); the others run on the generic path.
     compiled_methods compiled;

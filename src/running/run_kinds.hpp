@@ -151,13 +151,6 @@ struct run_kind<method_kind::classic> {
     }
 };
 
-// Whether Sys can meet `n`: the requirement's row asked of the type's form.
-template <class Sys>
-bool meets_at_run_time(needs n) {
-    static constexpr system_form form = form_of<Sys>(true);
-    return *requirement_row(n).why_not(form) == '\0';
-}
-
 // The kind's run where the system type meets the kind's requirement; the
 // method's own requirement (a classic stepper's, force-gradient kicks) was
 // checked before.
@@ -171,12 +164,11 @@ steps_and_forces run_where_met(const C& c) {
         refuse<typename C::system>(c.m.name, entry_of(K).requirement);
 }
 
-// The one dispatch: a method's kind to its run. A checkpointed run of a
-// method its row says cannot resume is refused here, with the row's reason.
+// The one dispatch: a method's kind to its run. Its requirement was asked
+// once, by problem::run; a checkpointed run of a method its row says cannot
+// resume is refused here, with the row's reason.
 template <class C>
 steps_and_forces run_method(const C& c) {
-    if (const needs n = requirement_of(c.m); !meets_at_run_time<typename C::system>(n))
-        refuse<typename C::system>(c.m.name, n);
     if (c.observed() && c.rq.checkpoint.every_steps)
         if (const std::string why = why_not_resumable(c.m); !why.empty()) throw invalid_argument(why);
     return [&]<std::size_t... K>(std::index_sequence<K...>) {

@@ -114,12 +114,7 @@ problem make_problem(const std::string& system, const parameter_values& given, c
     p.form.negative_potential = entry->negative_potential;
     if (entry->kinetic_not_quadratic) p.form.quadratic_kinetic = false;
     // What the registry's values add to the type's answers (V < 0, T quadratic)
-    // is refused here, in the registry's words, before the method runs.
-    p.run = [run = std::move(p.run), form = p.form](const method_spec& m, const run_request& rq, double t0,
-                                                    double t_end, const std::vector<double>& x0) {
-        if (const std::string why = why_not(m, form); !why.empty()) throw invalid_argument(why);
-        return run(m, rq, t0, t_end, x0);
-    };
+    // is in the form that problem::run asks before the method runs.
     if (!q0.empty()) {  // the scene's own initial state: the exact solution no longer applies
         if (q0.size() != p.degrees_of_freedom || p0.size() != q0.size())
             throw invalid_argument(where + ": initial q has " + std::to_string(q0.size()) + " and p " +

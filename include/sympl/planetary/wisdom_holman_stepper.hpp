@@ -53,10 +53,10 @@
 namespace sympl {
 
 namespace detail {
-// A Wisdom-Holman run's bodies, G and table: finite masses > 0, G > 0, a
-// state of 3 numbers per body, a table the plan accepts; else invalid_argument.
-inline void check_wisdom_holman(const std::vector<double>& mass, double G, long dimension, const table& method,
-                                const wisdom_holman_options& options) {
+// A Wisdom-Holman run's bodies and G: finite masses > 0, G > 0, a state of 3
+// numbers per body; else invalid_argument. The table is the plan's to check
+// (the constructor makes it once).
+inline void check_wisdom_holman(const std::vector<double>& mass, double G, long dimension) {
     const std::string who = "wisdom_holman_stepper";
     check_masses(mass, who);
     if (!(std::isfinite(G) && G > 0))
@@ -64,7 +64,6 @@ inline void check_wisdom_holman(const std::vector<double>& mass, double G, long 
     if (dimension != Eigen::Dynamic && std::size_t(dimension) != 3 * mass.size())
         throw invalid_argument(who + ": " + std::to_string(mass.size()) + " masses for a state of fixed dimension " +
                                std::to_string(dimension) + "; expected 3 degrees of freedom per body");
-    plan_wisdom_holman(method, options, who);
 }
 
 // Exactly the same numbers (the state a stepper returned last, handed back).
@@ -202,7 +201,7 @@ private:
 
     // Everything checked before any work, and the coordinates chosen: once.
     flows_type make_flows() const {
-        detail::check_wisdom_holman(mass_, G_, State::dimension, table_, options_);
+        detail::check_wisdom_holman(mass_, G_, State::dimension);
         if (options_.coordinates == wh_coordinates::jacobi)
             return flows_type(std::in_place_type<jacobi_flows>, mass_, G_);
         return flows_type(std::in_place_type<democratic_flows>, mass_, G_);
