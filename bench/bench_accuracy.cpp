@@ -68,7 +68,7 @@ double relative_error(double e, double e0) { return std::isfinite(e) ? std::fabs
 // A problem as both libraries see it: sympl's Hamiltonian and state, and
 // Odeint's first-order state y = (q, p) with its right-hand side and energy.
 template <class H, class X, class Y>
-struct problem {
+struct runnable_system {
     std::string name;
     H h;
     X x0;
@@ -79,7 +79,7 @@ struct problem {
 };
 
 template <class H, class X, class Y>
-std::vector<contender> contenders(const problem<H, X, Y>& pr) {
+std::vector<contender> contenders(const runnable_system<H, X, Y>& pr) {
     std::vector<contender> all;
     const double e0 = sympl::energy(pr.h, pr.x0), t_end = pr.t_end;
     const auto relative = [e0](double e) { return relative_error(e, e0); };
@@ -221,7 +221,7 @@ std::vector<contender> contenders(const problem<H, X, Y>& pr) {
 
 // The Odeint symplectic RKN steppers take (q, p) separately: their own runner.
 template <class H, class X, class Y, class Q>
-void add_odeint_rkn(std::vector<contender>& all, const problem<H, X, Y>& pr, std::function<void(const Q&, Q&)> force,
+void add_odeint_rkn(std::vector<contender>& all, const runnable_system<H, X, Y>& pr, std::function<void(const Q&, Q&)> force,
                     std::function<Q(const Eigen::Matrix<double, X::dimension, 1>&)> to_q,
                     std::function<double(const Q&, const Q&)> energy_qp) {
     const double e0 = sympl::energy(pr.h, pr.x0), t_end = pr.t_end;
@@ -289,7 +289,7 @@ using HY = std::array<double, 4>;
 using HQ = std::array<double, 2>;
 
 void henon_heiles(double target, int repeats) {
-    const problem<HH, HX, HY> pr{
+    const runnable_system<HH, HX, HY> pr{
         "Henon-Heiles E = 1/8, t = 1000", HH{}, HH::initial_state(1.0 / 8), 1000.0,
         [](const HX& x) { return HY{x.q[0], x.q[1], x.p[0], x.p[1]}; },
         [](const HY& y, HY& d) { d = {y[2], y[3], -y[0] - 2 * y[0] * y[1], -y[1] - y[0] * y[0] + y[1] * y[1]}; },
@@ -340,7 +340,7 @@ void fpu(std::size_t n, double t_end, double target, int repeats) {
         state = state * 6364136223846793005ULL + 1442695040888963407ULL;  // Knuth's MMIX LCG
         x0.p[Eigen::Index(i)] = double(state >> 11) / double(1ULL << 53) * 2 - 1;
     }
-    const problem<FPU, FX, FY> pr{
+    const runnable_system<FPU, FX, FY> pr{
         "FPU-beta N = " + std::to_string(n) + ", t = " + std::to_string(int(t_end)), FPU{1.0}, x0, t_end,
         [n](const FX& x) {
             FY y(2 * n);

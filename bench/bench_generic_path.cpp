@@ -27,7 +27,7 @@ double median(std::vector<double> v) {
 }
 
 // ns per step of one unobserved run of `name` at dt over [0, t_end].
-double ns_per_step(const run_function& run, const problem& p, const std::string& name, double dt, double t_end) {
+double ns_per_step(const run_function& run, const runnable_system& p, const std::string& name, double dt, double t_end) {
     run_request rq;
     rq.dt = dt;
     rq.observed = false;
@@ -38,7 +38,7 @@ double ns_per_step(const run_function& run, const problem& p, const std::string&
     return r.seconds / steps * 1e9;
 }
 
-void compare(const char* label, const problem& p, const run_function& generic, double dt, double t_end, int rounds) {
+void compare(const char* label, const runnable_system& p, const run_function& generic, double dt, double t_end, int rounds) {
     std::printf("%s (dt = %g, %g steps a run)\n", label, dt, t_end / dt);
     std::printf("  %-18s %14s %14s %8s\n", "method", "compiled ns", "generic ns", "ratio");
     for (const char* name : {"leapfrog_kdk", "blanes_moan_s6", "dprkn8", "rk4"}) {
@@ -59,10 +59,10 @@ void compare(const char* label, const problem& p, const run_function& generic, d
 int main(int argc, char** argv) {
     const bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
     const int rounds = quick ? 3 : 9;
-    const problem chain = make_problem("fpu_beta", {{"n", 32}}, {}, {}, "bench");
+    const runnable_system chain = make_system("fpu_beta", {{"n", 32}}, {}, {}, "bench");
     const auto chain_generic = detail::generic_run(erased_separable::of(sympl::hamiltonians::fpu_beta{1}), chain.energy);
     compare("FPU-beta, N = 32", chain, chain_generic, 0.05, 200, rounds);
-    const problem hh = make_problem("henon_heiles", {}, {}, {}, "bench");
+    const runnable_system hh = make_system("henon_heiles", {}, {}, {}, "bench");
     const auto hh_generic = detail::generic_run(erased_separable::of(sympl::hamiltonians::henon_heiles{}), hh.energy);
     compare("Henon-Heiles", hh, hh_generic, 0.05, 500, rounds);
     std::printf("ratio: generic / compiled, median of %d interleaved rounds\n", rounds);

@@ -294,8 +294,8 @@ void measure(std::vector<contender>& cs, long n, int rounds) {
         }
 }
 
-void print(const char* problem, const char* scheme, std::vector<contender>& cs) {
-    std::printf("%s, %s\n", problem, scheme);
+void print(const char* runnable_system, const char* scheme, std::vector<contender>& cs) {
+    std::printf("%s, %s\n", runnable_system, scheme);
     // "/ hand": over the hand loop of the same force style where there is one
     // (the 2-D problems), else over the raw-pointer hand loop.
     const auto eigen_style = [](const contender& c) { return c.name.find("Eigen") != std::string::npos; };
@@ -333,7 +333,7 @@ struct scheme {
 
 // One problem: every scheme, every contender. State: q0, p0 of dimension N (0: dynamic, n).
 template <int N, class Kernel>
-void run_problem(const char* problem, const Kernel& kernel, const std::vector<double>& q0, const std::vector<double>& p0,
+void run_problem(const char* runnable_system, const Kernel& kernel, const std::vector<double>& q0, const std::vector<double>& p0,
                  double dt, long n_steps, int rounds, const std::vector<scheme>& schemes) {
     const long n = long(q0.size());
     using State = sympl::phase_space<double, N == 0 ? Eigen::Dynamic : N>;
@@ -456,7 +456,7 @@ void run_problem(const char* problem, const Kernel& kernel, const std::vector<do
                               return q[0];
                           }});
         measure(cs, n_steps, rounds);
-        print(problem, sc.label, cs);
+        print(runnable_system, sc.label, cs);
     }
 }
 

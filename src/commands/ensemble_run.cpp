@@ -65,7 +65,7 @@ ensemble_block compute_block(const ensemble_setup& u, int threads, const exchang
     }
     const scene& s = *u.s;
     const auto run_group = [&](const std::vector<std::size_t>& g, int team) {
-        const problem p = make_problem(s.system, b.points[g.front()].parameters, s.q0, s.p0, s.source);
+        const runnable_system p = make_system(s.system, b.points[g.front()].parameters, s.q0, s.p0, s.source);
         std::vector<std::vector<double>> starts;
         for (std::size_t m : g) starts.push_back(b.points[m].x0);
         ensemble_request r = u.request;

@@ -22,7 +22,7 @@ namespace {
 // (a classic stepper by its name where only some are): those it can run;
 // every other method runs on the generic path (generic_path.hpp).
 std::vector<std::string> compiled_names(const system_entry& s) {
-    const problem p = make_problem(s.name, {}, {}, {}, s.name);  // the form with the entry's own facts (V < 0)
+    const runnable_system p = make_system(s.name, {}, {}, {}, s.name);  // the form with the entry's own facts (V < 0)
     std::vector<std::string> names;
     for (const method_kind_entry& k : method_kinds()) {
         if (!p.compiled.kinds.has(k.kind) || !why_not(k.requirement, p.form).empty()) continue;

@@ -179,7 +179,7 @@ private:
 namespace {
 
 // t, then the state's columns as everywhere else (q1..qn, p1..pn, or bodies' names).
-std::vector<std::string> trajectory_header(const problem& p) {
+std::vector<std::string> trajectory_header(const runnable_system& p) {
     std::vector<std::string> header{"t"};
     for (auto& column : state_columns(p.system, p.degrees_of_freedom)) header.push_back(std::move(column));
     return header;
@@ -195,7 +195,7 @@ void write_energy_series(const run_result& r, const fs::path& file, std::vector<
 }
 
 // One planned run: its trajectory file (staged), its checkpoints, its measures.
-outcome run_one(const scene& s, const problem& p, const planned_run& planned, const reference_state& ref,
+outcome run_one(const scene& s, const runnable_system& p, const planned_run& planned, const reference_state& ref,
                 const fs::path& dir, bool resume, const progress& bar, std::vector<std::unique_ptr<atomic_file>>& files,
                 std::vector<checkpointed_method>& finished_checkpoints) {
     const scene_method& m = *planned.method;
@@ -271,7 +271,7 @@ void write_heading(const scene& s, const run_plan& plan, const reference_state& 
 // The reference a run's final errors need, said on stderr before it starts
 // when it is long, refused up front when absurd; none when the scene does not
 // ask for final errors (and has no exact solution, which is free).
-reference_state reference_for_run(const scene& s, const problem& p, const run_plan& plan, double max_steps) {
+reference_state reference_for_run(const scene& s, const runnable_system& p, const run_plan& plan, double max_steps) {
     const bool asked = s.output.final_error.value_or(bool(p.exact));
     if (!asked)
         return {{}, 0,
@@ -295,7 +295,7 @@ reference_state reference_for_run(const scene& s, const problem& p, const run_pl
 }
 
 void run_scene(const scene& s, bool json, std::ostream& out, double max_steps, bool resume) {
-    const problem p = problem_of(s);
+    const runnable_system p = system_of(s);
     run_plan plan = plan_runs(s, p, sweep_use::first);
     if (!s.output.final_error.value_or(bool(p.exact))) plan.reference_dt = plan.reference_steps = 0;  // none runs
     check_run_size(plan, max_steps);

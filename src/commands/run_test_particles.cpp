@@ -304,7 +304,7 @@ std::vector<test_particle_row> run_test_particles(const scene& s, const std::vec
     if (resume && !s.checkpoint.every_steps)
         throw scene_error(s.source + ": --resume, but the scene has no checkpoint = {every_steps = N, file = \"...\"}");
     if (piece == 0) throw invalid_argument("run_test_particles: pieces of 0 particles; expected at least 1");
-    const problem base = make_problem(s.system, s.parameters, s.q0, s.p0, s.source);
+    const runnable_system base = make_system(s.system, s.parameters, s.q0, s.p0, s.source);
     planets p{base.masses, base.G, phase_space<double>(base.x0.size() / 2), s.methods[0], s.t0,
               test_particle_span_of(s).dt, 0, {}, s.test_particles->megno};
     // Bodies by the registry's coordinate names ("jupiter_x": jupiter), else "body k".

@@ -39,7 +39,7 @@ enum class method_kind {
 inline constexpr std::size_t method_kind_count = std::size_t(method_kind::charged) + 1;
 
 // A set of method kinds, as a template argument: the kinds a system's
-// registry entry compiles for its own type (model.hpp, systems/*.cpp).
+// registry entry compiles for its own type (runnable.hpp, systems/*.cpp).
 struct kind_set {
     std::uint32_t bits = 0;
     constexpr kind_set() = default;
@@ -286,7 +286,7 @@ inline constexpr classic_set all_classic = [] {
 }();
 
 // The methods compiled for a system's own type: its kinds and, of the classic
-// kind, its steppers (model.hpp).
+// kind, its steppers (runnable.hpp).
 struct compiled_methods {
     kind_set kinds = all_kinds;
     classic_set classic = all_classic;

@@ -25,7 +25,7 @@ const std::vector<double>& sweep_of(const scene& s, const scene_method& m) {
     return m.dt.empty() ? s.dt : m.dt;
 }
 
-run_plan plan_runs(const scene& s, const problem& p, sweep_use use) {
+run_plan plan_runs(const scene& s, const runnable_system& p, sweep_use use) {
     run_plan plan{.s = &s, .use = use};
     const double span = s.t_end - s.t0;
     double finest = HUGE_VAL;
@@ -69,8 +69,8 @@ void check_run_size(const run_plan& plan, double max_steps) {
                plan.reference_dt, plan.reference_steps);
 }
 
-problem problem_of(const scene& s) {
-    problem p = make_problem(s.system, s.parameters, s.q0, s.p0, s.source);
+runnable_system system_of(const scene& s) {
+    runnable_system p = make_system(s.system, s.parameters, s.q0, s.p0, s.source);
     // An energy that is already infinite (q at a singularity, 1e308 squared)
     // would make every energy error read 0 or NaN.
     if (p.energy)

@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "running/problem.hpp"
+#include "running/runnable_system.hpp"
 #include "reading/scene.hpp"
 
 namespace sympl::app {
@@ -39,7 +39,7 @@ struct run_plan {
 // The step sizes (or, for adaptive kinds, tolerances) the method is swept over, largest first.
 const std::vector<double>& sweep_of(const scene& s, const scene_method& m);
 
-run_plan plan_runs(const scene& s, const problem& p, sweep_use use);
+run_plan plan_runs(const scene& s, const runnable_system& p, sweep_use use);
 
 // Refuses, with the figures, a plan whose runs would take more than
 // max_steps steps each: every fixed-step method at every step size it will
@@ -47,8 +47,8 @@ run_plan plan_runs(const scene& s, const problem& p, sweep_use use);
 // run. LogH and adaptive methods choose their own steps and are not counted.
 void check_run_size(const run_plan& plan, double max_steps);
 
-// The scene's system as a problem, every method checked against it: a method
+// The scene's system made runnable, every method checked against it: a method
 // it cannot run is a scene_error before anything runs or is written.
-problem problem_of(const scene& s);
+runnable_system system_of(const scene& s);
 
 }  // namespace sympl::app

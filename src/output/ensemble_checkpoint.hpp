@@ -14,7 +14,7 @@
 #include <map>
 #include <string>
 
-#include "running/problem.hpp"
+#include "running/runnable_system.hpp"
 
 namespace sympl::app {
 

@@ -15,7 +15,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::vector<std::string> header(const scene& s, const problem& p) {
+std::vector<std::string> header(const scene& s, const runnable_system& p) {
     const ensemble_spec& e = *s.ensemble;
     std::vector<std::string> h{"index"};
     // The run's own column names (q1.., or the bodies' "jupiter_x" where the system names them).
@@ -88,7 +88,7 @@ void write_section(const ensemble_setup& u, const fs::path& dir, const std::stri
                    ensemble_outcome& outcome) {
     const scene& s = *u.s;
     const ensemble_spec& e = *s.ensemble;
-    const problem& base = u.base;
+    const runnable_system& base = u.base;
     const ensemble_request& rq = u.request;
     const std::size_t n = u.trajectories;
     std::vector<std::pair<std::size_t, ensemble_point>> chosen;
@@ -105,7 +105,7 @@ void write_section(const ensemble_setup& u, const fs::path& dir, const std::stri
     section.stream() << head.str() << "\n";
     std::size_t crossings = 0;
     for (const auto& [i, pt] : chosen) {
-        const problem p = make_problem(s.system, pt.parameters, s.q0, s.p0, s.source);
+        const runnable_system p = make_system(s.system, pt.parameters, s.q0, s.p0, s.source);
         try {
             for (const auto& c : p.section(*rq.method, rq.dt, rq.steps, pt.x0)) {
                 section.stream() << i;

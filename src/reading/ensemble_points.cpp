@@ -91,7 +91,7 @@ ensemble_point point_at(const scene& s, const system_entry& entry, const paramet
     pt.hamiltonian_key = key_of(entry, merged);
     if (!pt.invalid.empty()) return pt;
     try {
-        const problem p = make_problem(s.system, pt.parameters, q0, p0, "");
+        const runnable_system p = make_system(s.system, pt.parameters, q0, p0, "");
         if (p.energy && !std::isfinite(p.energy(p.x0)))
             pt.invalid = "the start has energy " + shortest(p.energy(p.x0)) + "; expected a finite energy";
         else
@@ -107,7 +107,7 @@ ensemble_point point_at(const scene& s, const system_entry& entry, const paramet
 ensemble_setup set_up_ensemble(const scene& s, double max_steps) {
     if (!s.ensemble) throw invalid_argument(s.source + ": the scene has no [ensemble] table");
     const ensemble_spec& e = *s.ensemble;
-    ensemble_setup u{.s = &s, .entry = find_system(s.system), .base = problem_of(s)};
+    ensemble_setup u{.s = &s, .entry = find_system(s.system), .base = system_of(s)};
     if (!u.base.ensemble)
         throw invalid_argument(s.source + ": " + s.system +
                                " is not a separable Hamiltonian H = T(p) + V(q); an ensemble runs splitting tables on one");

@@ -29,12 +29,12 @@ std::vector<std::vector<double>> read_states(const std::string& path, const std:
 ensemble_point point_at(const scene& s, const system_entry& entry, const parameter_values& defaults, std::size_t index,
                         const std::vector<std::vector<double>>& states);
 
-// An ensemble run's set-up, checked: the scene's base problem, the states of
+// An ensemble run's set-up, checked: the scene's base system, the states of
 // its CSV (empty for a grid), its size, and the request every group shares.
 struct ensemble_setup {
     const scene* s = nullptr;
     const system_entry* entry = nullptr;
-    problem base{};
+    runnable_system base{};
     parameter_values defaults{};  // the scene's parameters over the system's defaults
     std::vector<std::vector<double>> states{};
     std::size_t trajectories = 0;

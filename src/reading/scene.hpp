@@ -14,7 +14,7 @@
 
 #include "output/checkpoint.hpp"
 #include "methods/method_kinds.hpp"
-#include "running/problem.hpp"
+#include "running/runnable_system.hpp"
 
 namespace sympl::app {
 

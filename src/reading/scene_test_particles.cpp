@@ -52,7 +52,7 @@ double read_angle(const reader& r, const toml::table& t, const char* key) {
 
 // The system and the method a population of test particles can run with.
 void check_planetary_run(const reader& r, const toml::node& node, const scene& s, const toml::array& methods) {
-    const problem p = make_problem(s.system, s.parameters, s.q0, s.p0, s.source);
+    const runnable_system p = make_system(s.system, s.parameters, s.q0, s.p0, s.source);
     if (!p.form.planetary || p.masses.size() < 2)
         r.fail(node, "[test_particles] needs a planetary system (a star and planets with masses and G); '" + s.system +
                          "' is not one (expected system = \"outer_solar_system\")");

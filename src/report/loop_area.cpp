@@ -9,7 +9,7 @@
 
 namespace sympl::app {
 
-double loop_area_error(const problem& p, const method_spec& m, run_request rq, double t0, double t_end) {
+double loop_area_error(const runnable_system& p, const method_spec& m, run_request rq, double t0, double t_end) {
     // Energy watched so that a loop point that runs away (finite but huge)
     // counts as unstable instead of giving a meaningless area.
     rq.energy = p.hamiltonian;

@@ -16,7 +16,7 @@ namespace sympl::app {
 
 namespace fs = std::filesystem;
 
-reference_state make_reference(const scene& s, const problem& p, const run_plan& plan, const fs::path& cache,
+reference_state make_reference(const scene& s, const runnable_system& p, const run_plan& plan, const fs::path& cache,
                                bool side_by_side) {
     if (p.exact) return {p.exact(s.t_end - s.t0), 0.0, "exact", {}};
     const double dt = plan.reference_dt, finest_dt = plan.finest_dt;
@@ -41,11 +41,11 @@ reference_state make_reference(const scene& s, const problem& p, const run_plan&
     }
     std::vector<double> coarse, fine;
     try {
-        // The coarse run on a thread of its own, with a problem of its own
+        // The coarse run on a thread of its own, with a system of its own
         // (the runs share no system object), while this one runs the fine.
         std::future<std::vector<double>> coarse_run = std::async(
             side_by_side ? std::launch::async : std::launch::deferred, [&s, dt, x0 = p.x0] {
-                const problem own = make_problem(s.system, s.parameters, s.q0, s.p0, s.source);
+                const runnable_system own = make_system(s.system, s.parameters, s.q0, s.p0, s.source);
                 return own.reference(s.t0, s.t_end, 2 * dt, x0);
             });
         fine = p.reference(s.t0, s.t_end, dt, p.x0);
@@ -65,7 +65,7 @@ reference_state make_reference(const scene& s, const problem& p, const run_plan&
     return r;
 }
 
-reference_cost estimate_reference(const scene& s, const problem& p, const run_plan& plan) {
+reference_cost estimate_reference(const scene& s, const runnable_system& p, const run_plan& plan) {
     reference_cost c{plan.reference_steps, 0};
     if (p.exact || !(plan.reference_dt > 0)) return c;
     const double dt = plan.reference_dt, span = s.t_end - s.t0;

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "running/problem.hpp"
+#include "running/runnable_system.hpp"
 #include "methods/run_plan.hpp"
 #include "reading/scene.hpp"
 
@@ -27,7 +27,7 @@ struct reference_state {
 // With `cache` not empty, a reference is stored there under a key of
 // everything it depends on. side_by_side: its two runs (the step and twice
 // it) on two threads.
-reference_state make_reference(const scene& s, const problem& p, const run_plan& plan,
+reference_state make_reference(const scene& s, const runnable_system& p, const run_plan& plan,
                                const std::filesystem::path& cache = {}, bool side_by_side = false);
 
 // What the reference will cost before it starts: its steps (both runs) and
@@ -37,7 +37,7 @@ struct reference_cost {
     double steps = 0;
     double seconds = 0;
 };
-reference_cost estimate_reference(const scene& s, const problem& p, const run_plan& plan);
+reference_cost estimate_reference(const scene& s, const runnable_system& p, const run_plan& plan);
 
 // `sympl run` says on stderr what a reference will cost when it is estimated
 // above announced_reference_seconds, and refuses one above

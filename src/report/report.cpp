@@ -29,20 +29,20 @@ namespace fs = std::filesystem;
 namespace {
 
 // Everything is checked before anything runs: names, systems, methods, sizes.
-void check_scenes(const std::vector<scene>& scenes, const report_options& options, std::vector<problem>& problems,
+void check_scenes(const std::vector<scene>& scenes, const report_options& options, std::vector<runnable_system>& systems,
                   std::vector<run_plan>& plans) {
     std::set<std::string> names;
     for (const scene& s : scenes)
         if (!names.insert(s.name).second)
             throw scene_error(s.source + ": a second scene named '" + s.name + "'; expected each scene name once");
-    problems.reserve(scenes.size());  // plans point into problems and scenes: no reallocation after this
+    systems.reserve(scenes.size());  // plans point into systems and scenes: no reallocation after this
     for (const scene& s : scenes)
         if (s.test_particles)  // a map of one method, not a comparison of methods
             throw scene_error(s.source + ": a scene with [test_particles] is a MEGNO map, not a comparison of "
                               "methods; expected it run by `sympl run`");
     for (const scene& s : scenes) {
-        problems.push_back(problem_of(s));
-        plans.push_back(plan_runs(s, problems.back(), sweep_use::whole));
+        systems.push_back(system_of(s));
+        plans.push_back(plan_runs(s, systems.back(), sweep_use::whole));
         check_run_size(plans.back(), options.max_steps);
     }
 }
@@ -172,9 +172,9 @@ void write_report(const std::vector<scene>& scenes, const std::vector<run_plan>&
 
 void run_report(const std::vector<scene>& scenes, const report_options& options, std::ostream& out,
                 const exchange& ranks) {
-    std::vector<problem> problems;
+    std::vector<runnable_system> systems;
     std::vector<run_plan> plans;
-    check_scenes(scenes, options, problems, plans);
+    check_scenes(scenes, options, systems, plans);
     // Under mpirun the (scene, method, dt) runs are dealt round-robin over the
     // ranks; rank 0 makes the references, gathers every rank's results and
     // writes everything. One process is rank 0 of 1.
@@ -197,7 +197,7 @@ void run_report(const std::vector<scene>& scenes, const report_options& options,
         for (std::size_t k = 0; k < scenes.size(); ++k)
             reference_runs.push_back([&, k, cache] {
                 reference_state& ref = references.at(&scenes[k]);
-                ref = make_reference(scenes[k], problems[k], plans[k], cache, threads_used(options.threads) > 1);
+                ref = make_reference(scenes[k], systems[k], plans[k], cache, threads_used(options.threads) > 1);
                 if (ref.failure.empty() && ref.error > chaotic_reference)
                     ref.failure = "its two references (" + ref.kind + " and twice that step) differ by " +
                                   format_number(ref.error, 2) + ": over this span nearby orbits separate (chaotic "
@@ -205,7 +205,7 @@ void run_report(const std::vector<scene>& scenes, const report_options& options,
                                   "energy error still measures the method.";
             });
     }
-    std::vector<report_row> rows = rows_of(plans, problems);
+    std::vector<report_row> rows = rows_of(plans, systems);
     measure_rows(rows, mine, bar, options.threads, reference_runs);
     phases.lap("references and measured runs");
     time_rows(rows, mine, rounds, options.quick ? 1e-3 : 5e-3, bar, references, options.threads);  // each rank its own

@@ -82,10 +82,10 @@ void read_row_records(const std::string& block, std::vector<report_row>& rows) {
 
 }  // namespace
 
-std::vector<report_row> rows_of(const std::vector<run_plan>& plans, const std::vector<problem>& problems) {
+std::vector<report_row> rows_of(const std::vector<run_plan>& plans, const std::vector<runnable_system>& systems) {
     std::vector<report_row> rows;
     for (std::size_t k = 0; k < plans.size(); ++k)
-        for (const planned_run& r : plans[k].runs) rows.push_back({.s = plans[k].s, .run = &r, .p = &problems[k]});
+        for (const planned_run& r : plans[k].runs) rows.push_back({.s = plans[k].s, .run = &r, .p = &systems[k]});
     return rows;
 }
 
@@ -100,10 +100,10 @@ std::vector<std::size_t> rows_to_run(const std::vector<report_row>& rows, const 
     return picked;
 }
 
-// A problem of the row's own, made as the report made the scene's: runs on
+// A system of the row's own, made as the report made the scene's: runs on
 // different threads share no system object (a system may keep what it has
 // found out about its H between calls).
-problem own_problem(const report_row& r) { return make_problem(r.s->system, r.s->parameters, r.s->q0, r.s->p0, r.s->source); }
+runnable_system own_problem(const report_row& r) { return make_system(r.s->system, r.s->parameters, r.s->q0, r.s->p0, r.s->source); }
 
 }  // namespace
 
@@ -118,7 +118,7 @@ void measure_rows(std::vector<report_row>& rows, const row_filter& mine, const p
             return;
         }
         report_row& r = rows[picked[k - first.size()]];
-        const problem p = own_problem(r);
+        const runnable_system p = own_problem(r);
         run_request rq = r.run->request();
         rq.energy = p.hamiltonian;
         rq.timing_repeats = 0;
@@ -151,7 +151,7 @@ void time_rows(std::vector<report_row>& rows, const row_filter& mine, int rounds
         bar.show("timing, round " + std::to_string(round + 1) + " of " + std::to_string(rounds));
         for_each_in_parallel(picked.size(), threads, [&](std::size_t k) {
             report_row& r = rows[picked[k]];
-            const problem p = own_problem(r);
+            const runnable_system p = own_problem(r);
             run_request rq = r.run->request();
             rq.observed = false;
             rq.timing_repeats = 1;

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "commands/ensemble_run.hpp"
-#include "running/problem.hpp"
+#include "running/runnable_system.hpp"
 #include "report/reference.hpp"
 #include "methods/run_plan.hpp"
 #include "studies/study.hpp"
@@ -19,7 +19,7 @@ namespace sympl::app {
 struct report_row {
     const scene* s = nullptr;
     const planned_run* run = nullptr;
-    const problem* p = nullptr;
+    const runnable_system* p = nullptr;
     run_result r{};
     double final_error = -1;
     double loop_area_error = -1;  // only where the scene asks for it
@@ -28,13 +28,13 @@ struct report_row {
 };
 
 // Every planned run of every plan, in order.
-std::vector<report_row> rows_of(const std::vector<run_plan>& plans, const std::vector<problem>& problems);
+std::vector<report_row> rows_of(const std::vector<run_plan>& plans, const std::vector<runnable_system>& systems);
 
 // Which rows this process runs (under MPI: round-robin over the ranks).
 using row_filter = std::function<bool(std::size_t)>;
 
 // The measured runs: energy, final state, blow-up, loop area where asked;
-// `threads` runs side by side (0: OpenMP's default), each with a problem of
+// `threads` runs side by side (0: OpenMP's default), each with a system of
 // its own, so that the rows' numbers are the same for any thread count.
 // The tasks `first` (the references) share the threads, started before the rows.
 void measure_rows(std::vector<report_row>& rows, const row_filter& mine, const progress& bar, int threads,

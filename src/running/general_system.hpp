@@ -1,5 +1,5 @@
 #pragma once
-// A general Hamiltonian H(q, p) as the program runs it (model.hpp wraps every
+// A general Hamiltonian H(q, p) as the program runs it (runnable.hpp wraps every
 // system that is a general_hamiltonian and not a separable one). To the
 // methods for any H (Gauss-Legendre, Tao, semiexplicit) it is H itself; to the
 // classic and Odeint steppers, which the library builds from a separable H or

@@ -3,7 +3,7 @@
 // erased_separable. Any H(q, p): generic_path_general.cpp.
 #include "running/generic_path.hpp"
 
-#include "running/model.hpp"
+#include "running/runnable.hpp"
 
 namespace sympl::app::detail {
 

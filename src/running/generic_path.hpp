@@ -13,7 +13,7 @@
 
 #include "running/erased_system.hpp"
 #include "running/general_system.hpp"
-#include "running/problem.hpp"
+#include "running/runnable_system.hpp"
 
 namespace sympl::app::detail {
 

@@ -3,7 +3,7 @@
 // its own, so that it builds beside the separable one (generic_path.cpp).
 #include "running/generic_path.hpp"
 
-#include "running/model.hpp"
+#include "running/runnable.hpp"
 
 namespace sympl::app::detail {
 

@@ -17,7 +17,7 @@
 
 #include "output/format.hpp"
 #include "methods/method_kinds.hpp"
-#include "running/problem.hpp"
+#include "running/runnable_system.hpp"
 
 namespace sympl::app::detail {
 
@@ -106,7 +106,7 @@ template <class Context, class Stepper>
 steps_and_forces checkpointed(const Context& c, Stepper& stepper);
 
 // The state at t + theta dt inside the last step, from a stepper that
-// interpolates its own steps: the output times (model.hpp) read it instead
+// interpolates its own steps: the output times (runnable.hpp) read it instead
 // of the Hermite interpolant, which is far off on a controlled pair's long
 // steps (run_rkn.hpp sets it).
 template <class State>
@@ -119,7 +119,7 @@ using own_interpolation = std::function<void(double theta, State& out)>;
 // interpolates its own steps puts that interpolation. The observer is held
 // by reference (observer_ref), so the timed and the observed run of a
 // stepper are one driver, compiled once.
-// Own: the methods compiled for Sys (its registry entry's, model.hpp);
+// Own: the methods compiled for Sys (its registry entry's, runnable.hpp);
 // run_method reaches no other.
 template <class Sys, int Dim, compiled_methods Own = compiled_methods{}>
 struct run_context {

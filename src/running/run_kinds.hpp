@@ -4,7 +4,7 @@
 // that picks it. A kind whose requirement a system type cannot meet is not
 // instantiated for it (the registry's requirement, checked by the library's
 // concepts at compile time). Included by the systems' translation units
-// (systems/*.cpp) through model.hpp only. The Odeint kinds are in
+// (systems/*.cpp) through runnable.hpp only. The Odeint kinds are in
 // run_odeint.hpp, those for any H(q, p) in run_general.hpp, the RKN pairs in
 // run_rkn.hpp, what all kinds share in run_context.hpp.
 #include <cstddef>
@@ -21,7 +21,7 @@
 
 namespace sympl::app::detail {
 
-// A method the runner should have handed to the generic path (model.hpp).
+// A method the runner should have handed to the generic path (runnable.hpp).
 [[noreturn]] inline void not_compiled(const method_spec& m) {
     throw std::logic_error("method '" + m.name + "': not compiled for the system, yet it reached its runner");
 }
@@ -165,7 +165,7 @@ steps_and_forces run_where_met(const C& c) {
 }
 
 // The one dispatch: a method's kind to its run. Its requirement was asked
-// once, by problem::run; a checkpointed run of a method its row says cannot
+// once, by runnable_system::run; a checkpointed run of a method its row says cannot
 // resume is refused here, with the row's reason.
 template <class C>
 steps_and_forces run_method(const C& c) {

@@ -97,13 +97,13 @@ parameter_values with_defaults(const system_entry& entry, const parameter_values
     return v;
 }
 
-problem make_problem(const std::string& system, const parameter_values& given, const std::vector<double>& q0,
+runnable_system make_system(const std::string& system, const parameter_values& given, const std::vector<double>& q0,
                      const std::vector<double>& p0, const std::string& where) {
     const system_entry* entry = find_system(system);
     if (!entry)
         throw invalid_argument(where + ": unknown system '" + system + "'; " +
                                expected_one_of(system, system_names()));
-    problem p;
+    runnable_system p;
     try {
         p = entry->build(with_defaults(*entry, given, where));
     } catch (const invalid_argument& e) {
@@ -114,7 +114,7 @@ problem make_problem(const std::string& system, const parameter_values& given, c
     p.form.negative_potential = entry->negative_potential;
     if (entry->kinetic_not_quadratic) p.form.quadratic_kinetic = false;
     // What the registry's values add to the type's answers (V < 0, T quadratic)
-    // is in the form that problem::run asks before the method runs.
+    // is in the form that runnable_system::run asks before the method runs.
     if (!q0.empty()) {  // the scene's own initial state: the exact solution no longer applies
         if (q0.size() != p.degrees_of_freedom || p0.size() != q0.size())
             throw invalid_argument(where + ": initial q has " + std::to_string(q0.size()) + " and p " +

@@ -7,7 +7,7 @@
 // file systems/<name>.cpp with its entry (written with designated
 // initializers), and its line in systems/list.hpp. Each entry is a
 // translation unit of its own: it compiles for its system's type the methods
-// its `compiled` names (model.hpp), and the files build in parallel; every
+// its `compiled` names (runnable.hpp), and the files build in parallel; every
 // other method runs on the generic path (generic_path.hpp).
 #include <cmath>
 #include <functional>
@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "running/problem.hpp"
+#include "running/runnable_system.hpp"
 
 namespace sympl::app {
 
@@ -77,7 +77,7 @@ struct system_entry {
     std::string description;  // the Hamiltonian or equations, with the source
     std::vector<parameter> parameters{};
     bool exact = false;  // an exact solution from the default state (and parameters, see description)
-    std::function<problem(const parameter_values&)> build;  // every parameter present and valid
+    std::function<runnable_system(const parameter_values&)> build;  // every parameter present and valid
     bool negative_potential = false;  // V(q) < 0 everywhere (gravitation): LogH applies
     bool kinetic_not_quadratic = false;  // a separable H whose T is not quadratic in p: no RKN pairs
     time_scale period{};
@@ -104,10 +104,10 @@ double period_of(const system_entry& entry, const parameter_values& values);
 // registry's names ("jupiter_x", "jupiter_px").
 std::vector<std::string> state_columns(const std::string& system, std::size_t degrees_of_freedom);
 
-// The problem for a system by name, with the given parameters and, when q0 is
+// A system by name, made runnable, with the given parameters and, when q0 is
 // not empty, that initial state instead of the default (which drops the exact
 // solution). `where` prefixes error messages (the scene's file).
-problem make_problem(const std::string& system, const parameter_values& given, const std::vector<double>& q0,
+runnable_system make_system(const std::string& system, const parameter_values& given, const std::vector<double>& q0,
                      const std::vector<double>& p0, const std::string& where);
 
 }  // namespace sympl::app

@@ -117,7 +117,7 @@ bool write_files(const study_context& c, const long_span& r) {
 void write_summary(const study_context& c, const long_span& r, bool plots) {
     const auto& [per_period, rk_per_period, periods, h, samples, lf_forces, rk_forces] = r;
     const double cost_gap = std::fabs(double(lf_forces) - double(rk_forces)) / double(rk_forces);
-    c.summary << "## Energy error over a long span\n\nKepler problem at e = 0.5 (period 2 pi) for " << periods
+    c.summary << "## Energy error over a long span\n\nKepler runnable_system at e = 0.5 (period 2 pi) for " << periods
               << " periods: the symplectic leapfrog_kdk at h = 2 pi/" << per_period << " against the classic rk4 at 4h, "
               << "the same cost per unit time (" << lf_forces << " against " << rk_forces
               << " force evaluations, within " << format_number(100 * cost_gap, 2)

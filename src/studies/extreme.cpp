@@ -39,7 +39,7 @@ void extreme_study(const study_context& c) {
        << "| L | max energy error | final error |\n|---|---|---|\n";
     for (double L : {1e-20, 1.0, 1e20}) {
         const double period = 2 * std::numbers::pi;
-        const problem p = make_problem("kepler", {{"scale", L}}, {}, {}, "extreme scales");
+        const runnable_system p = make_system("kepler", {{"scale", L}}, {}, {}, "extreme scales");
         run_request rq;
         rq.dt = period / 2000;
         rq.energy = true;

@@ -67,7 +67,7 @@ void stability_study(const study_context& c) {
     csv.stream() << "method,interval_theory,ho_largest_stable_h,stiff_fpu_largest_stable_omega_dt,just_past\n";
     c.summary << "## Stability map\n\nLargest stable h = omega*dt on the harmonic oscillator (energy error < 1e8 over " << n
        << " steps, first unstable step by a scan in 0.05 and bisection) against the interval computed from the one-step propagator (|trace| < 2), and the "
-          "largest stable omega*dt on the stiff FPU problem (omega = 50, the stiff springs' frequency). "
+          "largest stable omega*dt on the stiff FPU runnable_system (omega = 50, the stiff springs' frequency). "
           "`just past`: the oscillator at 1.02 times the measured limit.\n\n"
        << "| method | interval (theory) | oscillator | stiff FPU | just past |\n|---|---|---|---|---|\n";
     const auto study = [&](const std::string& name, double theory, auto make_ho, auto make_fpu) {

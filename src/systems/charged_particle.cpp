@@ -2,7 +2,7 @@
 // (see systems.hpp): its own translation unit. H(q, p) does not split.
 #include <sympl/hamiltonians/charged_particle.hpp>
 
-#include "running/model.hpp"
+#include "running/runnable.hpp"
 #include "running/systems.hpp"
 
 namespace sympl::app {
@@ -18,7 +18,7 @@ system_entry charged_particle_entry() {
         .build = [](const parameter_values& v) {
             using enum method_kind;
             constexpr compiled own{.kinds = {gauss, tao, semiexplicit, odeint, charged}};
-            return model<2, own>(hamiltonians::charged_particle{v.at("mass"), v.at("charge"), v.at("field"),
+            return runnable<2, own>(hamiltonians::charged_particle{v.at("mass"), v.at("charge"), v.at("field"),
                                                            v.at("field_length"), v.at("confinement")},
                             {1.0, 0.0, 0.4, 1.0});
         },

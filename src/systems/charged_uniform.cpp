@@ -4,7 +4,7 @@
 
 #include <sympl/hamiltonians/charged_uniform.hpp>
 
-#include "running/model.hpp"
+#include "running/runnable.hpp"
 #include "running/systems.hpp"
 
 namespace sympl::app {
@@ -28,7 +28,7 @@ system_entry charged_uniform_entry() {
             // p = gamma m v + e A(q0) with A(q0) = B x q0 / 2 = (0, B/2, 0).
             const double speed2 = 1.01, c = h.speed_of_light;
             const double gm = h.mass / (c > 0 ? std::sqrt(1 - speed2 / (c * c)) : 1.0);
-            return model<3, own>(h, {1.0, 0.0, 0.0, 0.0, gm + h.charge * v.at("field") / 2, gm * 0.1});
+            return runnable<3, own>(h, {1.0, 0.0, 0.0, 0.0, gm + h.charge * v.at("field") / 2, gm * 0.1});
         },
         // gamma = 1 / sqrt(1 - |v0|^2 / c^2) with |v0|^2 = 1.01, the start's.
         .period = {"gyration period 2 pi gamma m / (e B) at the start (Jackson sec. 12.2)",

@@ -1,7 +1,7 @@
 // The registry entry of the damped, driven oscillator (see systems.hpp): its own translation unit.
 #include <sympl/hamiltonians/damped_driven_oscillator.hpp>
 
-#include "running/model.hpp"
+#include "running/runnable.hpp"
 #include "running/systems.hpp"
 
 namespace sympl::app {
@@ -20,7 +20,7 @@ system_entry damped_oscillator_entry() {
             const hamiltonians::damped_driven_oscillator o{v.at("mass"), v.at("stiffness"), v.at("damping"),
                                                            v.at("drive_amplitude"), v.at("drive_frequency")};
             const phase_space<double, 1> x0(one_dof(1.0), one_dof(0.0));
-            return model<1, own>(o, stacked(x0), exact_flow(o, x0));
+            return runnable<1, own>(o, stacked(x0), exact_flow(o, x0));
         },
         .period = {"undamped period 2 pi sqrt(m / k)",
                    [](const parameter_values& v) {

@@ -2,7 +2,7 @@
 // (see systems.hpp): its own translation unit. H(q, p) does not split.
 #include <sympl/hamiltonians/double_pendulum.hpp>
 
-#include "running/model.hpp"
+#include "running/runnable.hpp"
 #include "running/systems.hpp"
 
 namespace sympl::app {
@@ -17,7 +17,7 @@ system_entry double_pendulum_entry() {
         .build = [](const parameter_values& v) {
             using enum method_kind;
             constexpr compiled own{.kinds = {gauss, tao, semiexplicit, odeint}};
-            return model<2, own>(hamiltonians::double_pendulum{v.at("mass1"), v.at("mass2"), v.at("length1"),
+            return runnable<2, own>(hamiltonians::double_pendulum{v.at("mass1"), v.at("mass2"), v.at("length1"),
                                                           v.at("length2"), v.at("gravity")},
                             {1.0, 0.5, 0.2, -0.1});
         },

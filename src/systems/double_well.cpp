@@ -1,7 +1,7 @@
 // The registry entry of the double well (see systems.hpp): its own translation unit.
 #include <sympl/hamiltonians/double_well.hpp>
 
-#include "running/model.hpp"
+#include "running/runnable.hpp"
 #include "running/systems.hpp"
 
 namespace sympl::app {
@@ -13,7 +13,7 @@ system_entry double_well_entry() {
         .parameters = {nonnegative("barrier", 1, "barrier height at q = 0")},
         .build = [](const parameter_values& v) {
             constexpr compiled own{};  // no built-in scene: every method on the generic path
-            return model<1, own>(hamiltonians::double_well{v.at("barrier")}, {0.5, 0.3});
+            return runnable<1, own>(hamiltonians::double_well{v.at("barrier")}, {0.5, 0.3});
         },
         .period = {"small-oscillation period in a well, 2 pi / sqrt(8 barrier) (none at barrier 0)",
                    [](const parameter_values& v) { return two_pi / std::sqrt(8 * v.at("barrier")); }},

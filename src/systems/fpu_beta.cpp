@@ -1,7 +1,7 @@
 // The registry entry of the FPU beta chain (see systems.hpp): its own translation unit.
 #include <sympl/hamiltonians/fpu_beta.hpp>
 
-#include "running/model.hpp"
+#include "running/runnable.hpp"
 #include "running/systems.hpp"
 
 #include <cmath>
@@ -21,7 +21,7 @@ system_entry fpu_beta_entry() {
             std::vector<double> x0(2 * n, 0.0);
             const double pi = std::numbers::pi;
             for (std::size_t k = 0; k < n; ++k) x0[k] = std::sin(pi * double(k + 1) / double(n + 1));
-            return model<Eigen::Dynamic, own>(hamiltonians::fpu_beta{v.at("beta")}, x0);
+            return runnable<Eigen::Dynamic, own>(hamiltonians::fpu_beta{v.at("beta")}, x0);
         },
         .period = {"period of the lowest linear mode, pi / sin(pi / (2 (n + 1)))",
                    [](const parameter_values& v) {

@@ -1,7 +1,7 @@
 // The registry entry of the harmonic oscillator (see systems.hpp): its own translation unit.
 #include <sympl/hamiltonians/harmonic_oscillator.hpp>
 
-#include "running/model.hpp"
+#include "running/runnable.hpp"
 #include "running/systems.hpp"
 
 namespace sympl::app {
@@ -17,7 +17,7 @@ system_entry harmonic_oscillator_entry() {
             constexpr compiled own{.kinds = {table, dprkn, odeint}, .classic = {"rk4"}};
             const hamiltonians::harmonic_oscillator h{v.at("mass"), v.at("omega")};
             const phase_space<double, 1> x0(one_dof(1.0), one_dof(0.0));
-            return model<1, own>(h, stacked(x0), exact_flow(h, x0));
+            return runnable<1, own>(h, stacked(x0), exact_flow(h, x0));
         },
         .period = {"period 2 pi / omega",
                    [](const parameter_values& v) { return two_pi / v.at("omega"); }},

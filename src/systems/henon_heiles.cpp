@@ -1,7 +1,7 @@
 // The registry entry of the Henon-Heiles system (see systems.hpp): its own translation unit.
 #include <sympl/hamiltonians/henon_heiles.hpp>
 
-#include "running/model.hpp"
+#include "running/runnable.hpp"
 #include "running/systems.hpp"
 
 namespace sympl::app {
@@ -16,7 +16,7 @@ system_entry henon_heiles_entry() {
         .build = [](const parameter_values& v) {
             using enum method_kind;
             constexpr compiled own{.kinds = {table, dprkn, odeint}, .classic = {"rk4"}, .ensembles = true};
-            return model<2, own>(hamiltonians::henon_heiles{},
+            return runnable<2, own>(hamiltonians::henon_heiles{},
                             stacked(hamiltonians::henon_heiles::initial_state(v.at("energy"), v.at("q2"), v.at("p2"))));
         },
         .period = {"small-oscillation period 2 pi (H = |p|^2/2 + |q|^2/2 + cubic)",

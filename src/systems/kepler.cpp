@@ -1,7 +1,7 @@
 // The registry entry of the plane Kepler problem (see systems.hpp): its own translation unit.
 #include <sympl/hamiltonians/kepler.hpp>
 
-#include "running/model.hpp"
+#include "running/runnable.hpp"
 #include "running/systems.hpp"
 
 #include "output/format.hpp"
@@ -32,7 +32,7 @@ system_entry kepler_entry() {
             };
             std::function<std::vector<double>(double)> exact;
             if (mu == 1) exact = [e, scaled](double t) { return scaled(stacked(hamiltonians::kepler::exact_state(e, t))); };
-            return model<2, own>(hamiltonians::kepler{mu * L * L * L},
+            return runnable<2, own>(hamiltonians::kepler{mu * L * L * L},
                                  scaled(stacked(hamiltonians::kepler::initial_state(e))), exact);
         },
         .negative_potential = true,

@@ -1,7 +1,7 @@
 // The registry entry of the Kepler orbit in space (see systems.hpp): its own translation unit.
 #include <sympl/hamiltonians/kepler.hpp>
 
-#include "running/model.hpp"
+#include "running/runnable.hpp"
 #include "running/systems.hpp"
 
 namespace sympl::app {
@@ -19,7 +19,7 @@ system_entry kepler_3d_entry() {
         .build = [](const parameter_values& v) {
             constexpr compiled own{};  // no built-in scene: every method on the generic path
             const double e = v.at("eccentricity"), i = v.at("inclination"), o = v.at("node"), w = v.at("periapsis");
-            return model<3, own>(hamiltonians::kepler{}, stacked(hamiltonians::kepler::initial_state_3d(e, i, o, w)),
+            return runnable<3, own>(hamiltonians::kepler{}, stacked(hamiltonians::kepler::initial_state_3d(e, i, o, w)),
                             [=](double t) { return stacked(hamiltonians::kepler::exact_state_3d(e, i, o, w, t)); });
         },
         .negative_potential = true,

@@ -1,7 +1,7 @@
 // The registry entry of the Morse oscillator (see systems.hpp): its own translation unit.
 #include <sympl/hamiltonians/morse.hpp>
 
-#include "running/model.hpp"
+#include "running/runnable.hpp"
 #include "running/systems.hpp"
 
 namespace sympl::app {
@@ -18,7 +18,7 @@ system_entry morse_entry() {
             const hamiltonians::morse h{v.at("mass"), v.at("depth"), v.at("width"), v.at("position")};
             const phase_space<double, 1> x0(one_dof(0.5), one_dof(0.4));
             const bool bound = energy(h, x0) < h.depth;
-            return model<1, own>(h, stacked(x0), bound ? exact_flow(h, x0) : nullptr);
+            return runnable<1, own>(h, stacked(x0), bound ? exact_flow(h, x0) : nullptr);
         },
         .period = {"small-oscillation period 2 pi / (a sqrt(2 D / m))",
                    [](const parameter_values& v) {

@@ -1,7 +1,7 @@
 // The registry entry of the outer solar system (see systems.hpp): its own translation unit.
 #include <sympl/hamiltonians/outer_solar_system.hpp>
 
-#include "running/model.hpp"
+#include "running/runnable.hpp"
 #include "running/systems.hpp"
 
 namespace sympl::app {
@@ -14,7 +14,7 @@ system_entry outer_solar_system_entry() {
             using enum method_kind;
             constexpr compiled own{.kinds = {table, logh, odeint, wisdom_holman}, .classic = {"rk4"}, .extrapolated = true};
             const hamiltonians::outer_solar_system h{};
-            return model<hamiltonians::outer_solar_system::dimension, own>(h, stacked(h.initial_state()));
+            return runnable<hamiltonians::outer_solar_system::dimension, own>(h, stacked(h.initial_state()));
         },
         .negative_potential = true,
         .period = {"Jupiter's orbital period, 4332.59 days (NASA planetary fact sheet)",

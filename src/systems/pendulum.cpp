@@ -1,7 +1,7 @@
 // The registry entry of the pendulum (see systems.hpp): its own translation unit.
 #include <sympl/hamiltonians/pendulum.hpp>
 
-#include "running/model.hpp"
+#include "running/runnable.hpp"
 #include "running/systems.hpp"
 
 namespace sympl::app {
@@ -14,7 +14,7 @@ system_entry pendulum_entry() {
         .build = [](const parameter_values& v) {
             using enum method_kind;
             constexpr compiled own{.kinds = {table, dprkn, odeint}, .classic = {"rk4"}};
-            return model<1, own>(hamiltonians::pendulum{v.at("mass"), v.at("length"), v.at("gravity")}, {1.2, 0.3});
+            return runnable<1, own>(hamiltonians::pendulum{v.at("mass"), v.at("length"), v.at("gravity")}, {1.2, 0.3});
         },
         .period = {"small-amplitude period 2 pi sqrt(l / g)",
                    [](const parameter_values& v) {

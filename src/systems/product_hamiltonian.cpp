@@ -2,7 +2,7 @@
 // problem of Tao 2016 (see systems.hpp): its own translation unit.
 #include <sympl/hamiltonians/product_hamiltonian.hpp>
 
-#include "running/model.hpp"
+#include "running/runnable.hpp"
 #include "running/systems.hpp"
 
 namespace sympl::app {
@@ -17,7 +17,7 @@ system_entry product_hamiltonian_entry() {
         .build = [](const parameter_values& v) {
             using enum method_kind;
             constexpr compiled own{.kinds = {gauss, tao, semiexplicit, odeint}};
-            return model<1, own>(hamiltonians::product_hamiltonian{}, {v.at("q"), v.at("p")});
+            return runnable<1, own>(hamiltonians::product_hamiltonian{}, {v.at("q"), v.at("p")});
         },
         .period = {"small-oscillation period 2 pi about the origin",
                    [](const parameter_values&) { return two_pi; }},

@@ -1,7 +1,7 @@
 // The registry entry of the relativistic pendulum (see systems.hpp): its own translation unit.
 #include <sympl/hamiltonians/relativistic_pendulum.hpp>
 
-#include "running/model.hpp"
+#include "running/runnable.hpp"
 #include "running/systems.hpp"
 
 namespace sympl::app {
@@ -13,7 +13,7 @@ system_entry relativistic_pendulum_entry() {
         .parameters = {positive("mass", 1, "m"), positive("c", 1, "speed of light"), positive("k", 1, "restoring torque")},
         .build = [](const parameter_values& v) {
             constexpr compiled own{};  // no built-in scene: every method on the generic path
-            return model<1, own>(hamiltonians::relativistic_pendulum{v.at("mass"), v.at("c"), v.at("k")}, {1.2, 0.9});
+            return runnable<1, own>(hamiltonians::relativistic_pendulum{v.at("mass"), v.at("c"), v.at("k")}, {1.2, 0.9});
         },
         .kinetic_not_quadratic = true,
         .period = {"small-amplitude, slow period 2 pi sqrt(m / k)",

@@ -1,7 +1,7 @@
 // The registry entry of the periodic Toda lattice (see systems.hpp): its own translation unit.
 #include <sympl/hamiltonians/toda.hpp>
 
-#include "running/model.hpp"
+#include "running/runnable.hpp"
 #include "running/systems.hpp"
 
 #include <cmath>
@@ -19,7 +19,7 @@ system_entry toda_entry() {
             const auto n = std::size_t(v.at("n"));
             std::vector<double> x0(2 * n, 0.0);
             for (std::size_t k = 0; k < n; ++k) x0[n + k] = std::cos(2 * std::numbers::pi * double(k) / double(n));
-            return model<Eigen::Dynamic, own>(hamiltonians::toda{}, x0);
+            return runnable<Eigen::Dynamic, own>(hamiltonians::toda{}, x0);
         },
         .period = {"period of the lowest linear mode, pi / sin(pi / n)",
                    [](const parameter_values& v) {

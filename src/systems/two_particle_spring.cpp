@@ -1,7 +1,7 @@
 // The registry entry of two particles on a spring (see systems.hpp): its own translation unit.
 #include <sympl/hamiltonians/two_particle_spring.hpp>
 
-#include "running/model.hpp"
+#include "running/runnable.hpp"
 #include "running/systems.hpp"
 
 namespace sympl::app {
@@ -16,7 +16,7 @@ system_entry two_particle_spring_entry() {
             using enum method_kind;
             constexpr compiled own{.kinds = {table, odeint}, .classic = {"rk4"}};
             const hamiltonians::two_particle_spring h{v.at("mass"), v.at("stiffness")};
-            return model<4, own>(h, stacked(hamiltonians::two_particle_spring::initial_state()),
+            return runnable<4, own>(h, stacked(hamiltonians::two_particle_spring::initial_state()),
                             exact_flow(h, hamiltonians::two_particle_spring::initial_state()));
         },
         .period = {"period 2 pi sqrt(m / (2 k)) of the relative motion",

@@ -56,10 +56,10 @@ TEST_CASE("measure_order reads a 17-digit table's order above the rounding of it
     // 10 measures 2; the reading must stop above that tail.
     for (const char* name : {"sofroniou_spaletta_10", "kahan_li_10", "mclachlan_ss17", "yoshida_8"}) {
         const table t = typed_with_17_digits(method(name));
-        for (auto problem : {order_problem::pendulum, order_problem::kepler}) {
+        for (auto runnable_system : {order_problem::pendulum, order_problem::kepler}) {
             CAPTURE(name);
-            CAPTURE(to_string(problem));
-            const order_measurement m = measure_order(t, problem);
+            CAPTURE(to_string(runnable_system));
+            const order_measurement m = measure_order(t, runnable_system);
             CAPTURE(m.order);
             CHECK(std::fabs(m.order - t.order()) <= 0.15);
             CHECK(m.smallest_difference > 1e-21);

@@ -13,7 +13,7 @@
 
 #include "commands/ensemble_run.hpp"
 #include "output/format.hpp"
-#include "running/problem.hpp"
+#include "running/runnable_system.hpp"
 #include "methods/run_plan.hpp"
 #include "reading/scene.hpp"
 #include "scratch_directory.hpp"
@@ -45,7 +45,7 @@ TEST_CASE("ensemble.csv: the planets' columns carry the bodies' names, read back
     fs::create_directories(dir);
     const std::string head = "name = \"belt\"\nsystem = \"outer_solar_system\"\nmethods = [\"leapfrog_kdk\"]\n"
                              "dt = 50\nt_end = 500\n";
-    const problem planets = problem_of(parse_scene(head, "planets.toml"));
+    const runnable_system planets = system_of(parse_scene(head, "planets.toml"));
     const std::vector<std::string> columns = state_columns("outer_solar_system", planets.degrees_of_freedom);
     REQUIRE(columns.size() == 36);
     CHECK(columns[3] == "jupiter_x");

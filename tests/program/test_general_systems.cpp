@@ -18,7 +18,7 @@ using namespace sympl::app;
 namespace {
 // The final state's error at t_end of `method` at step dt, against the
 // system's own reference (Gauss-Legendre 6 in long double) at a small step.
-double final_error(const problem& p, const std::string& method, double dt, double t_end,
+double final_error(const runnable_system& p, const std::string& method, double dt, double t_end,
                    const std::vector<double>& reference) {
     run_request rq;
     rq.dt = dt;
@@ -31,7 +31,7 @@ double final_error(const problem& p, const std::string& method, double dt, doubl
 }  // namespace
 
 TEST_CASE("general systems: gauss_4 and semiexplicit(yoshida_4) run at order 4 on the double pendulum") {
-    const problem p = make_problem("double_pendulum", {}, {}, {}, "test");
+    const runnable_system p = make_system("double_pendulum", {}, {}, {}, "test");
     CHECK(p.form.general_hamiltonian);
     CHECK_FALSE(p.form.separable_hamiltonian);
     CHECK(p.reference_method == "gauss_6, long double");
@@ -51,7 +51,7 @@ TEST_CASE("general systems: gauss_4 and semiexplicit(yoshida_4) run at order 4 o
 TEST_CASE("general systems: each new system runs the methods for any H, the classic and Odeint ones, and keeps H") {
     for (const std::string system : {"charged_particle", "double_pendulum", "product_hamiltonian"}) {
         CAPTURE(system);
-        const problem p = make_problem(system, {}, {}, {}, "test");
+        const runnable_system p = make_system(system, {}, {}, {}, "test");
         REQUIRE(p.energy);
         CHECK(std::isfinite(p.energy(p.x0)));
         for (const char* method : {"gauss_2", "gauss_4", "gauss_6", "tao(yoshida_6)", "semiexplicit(kahan_li_8)", "rk4",
@@ -116,7 +116,7 @@ TEST_CASE("general systems: gauss_2, gauss_4, gauss_6 converge on every built-in
     // from, and the outer solar system failed) and every step stable.
     int runs = 0;
     for (const scene& sc : default_scenes(false)) {
-        const problem p = make_problem(sc.system, sc.parameters, sc.q0, sc.p0, "test");
+        const runnable_system p = make_system(sc.system, sc.parameters, sc.q0, sc.p0, "test");
         if (!why_not(*resolve_method("gauss_4", {}), p.form).empty()) continue;
         for (const double dt : sc.dt)
             for (const char* method : {"gauss_2", "gauss_4", "gauss_6"}) {

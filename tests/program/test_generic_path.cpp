@@ -34,7 +34,7 @@ TEST_CASE("every method of every built-in scene runs compiled for its system") {
     std::size_t pairs = 0;
     for (const bool quick : {true, false})
         for (const scene& s : default_scenes(quick)) {
-            const problem p = make_problem(s.system, s.parameters, s.q0, s.p0, s.source);
+            const runnable_system p = make_system(s.system, s.parameters, s.q0, s.p0, s.source);
             for (const scene_method& m : s.methods) {
                 INFO(s.name << ": " << m.name);
                 CHECK(compiled_has(p.compiled, m));
@@ -46,7 +46,7 @@ TEST_CASE("every method of every built-in scene runs compiled for its system") {
 
 TEST_CASE("a kind not compiled for a system runs on the generic path and is marked") {
     // Nothing is compiled for the Morse oscillator (no built-in scene runs it).
-    const problem morse = make_problem("morse", {}, {}, {}, "test");
+    const runnable_system morse = make_system("morse", {}, {}, {}, "test");
     for (const char* name : {"leapfrog_kdk", "blanes_moan_s6", "rk4", "dprkn8", "gauss_4", "odeint_rk4"}) {
         INFO(name);
         const method_spec m = *resolve_method(name, {});
@@ -58,7 +58,7 @@ TEST_CASE("a kind not compiled for a system runs on the generic path and is mark
         CHECK(r.max_energy_error < 1e-3);  // second order or better at dt = 0.01
     }
     // The pendulum's compiled kinds are not marked.
-    const problem pendulum = make_problem("pendulum", {}, {}, {}, "test");
+    const runnable_system pendulum = make_system("pendulum", {}, {}, {}, "test");
     CHECK_FALSE(pendulum.run(*resolve_method("leapfrog_kdk", {}), request(0.01), 0.0, 1.0, pendulum.x0).generic);
     // An extrapolated table is compiled where a built-in scene runs one (Kepler),
     // generic elsewhere, at the order extrapolation gives it either way:
@@ -67,7 +67,7 @@ TEST_CASE("a kind not compiled for a system runs on the generic path and is mark
     // a sixth-order error is below the fourth order's by about dt^2 = 2.5e-3
     // (4.8e-12 measured).
     const method_spec extrapolated = *resolve_method("extrapolated(leapfrog_kdk, 3)", {});
-    CHECK(compiled_has(make_problem("kepler", {}, {}, {}, "test").compiled, extrapolated));
+    CHECK(compiled_has(make_system("kepler", {}, {}, {}, "test").compiled, extrapolated));
     REQUIRE_FALSE(compiled_has(pendulum.compiled, extrapolated));
     const run_result r = pendulum.run(extrapolated, request(0.05), 0.0, 10.0, pendulum.x0);
     CHECK(r.generic);
@@ -81,7 +81,7 @@ TEST_CASE("a kind not compiled for a system runs on the generic path and is mark
 // dynamic size where the compiled pendulum's are fixed, which may change the
 // order of a sum, never an operation).
 TEST_CASE("the generic path gives what the compiled path gives") {
-    const auto compare = [](const problem& p, const run_function& generic, const char* name, double dt) {
+    const auto compare = [](const runnable_system& p, const run_function& generic, const char* name, double dt) {
         INFO(name);
         const method_spec m = *resolve_method(name, {});
         REQUIRE(compiled_has(p.compiled, m));
@@ -95,18 +95,18 @@ TEST_CASE("the generic path gives what the compiled path gives") {
         CHECK(relative_difference(b.final_state, a.final_state) < 64 * 2.2e-16);
         CHECK(std::abs(b.max_energy_error - a.max_energy_error) <= 64 * 2.2e-16);
     };
-    const problem pendulum = make_problem("pendulum", {}, {}, {}, "test");
+    const runnable_system pendulum = make_system("pendulum", {}, {}, {}, "test");
     const run_function pendulum_generic =
         detail::generic_run(erased_separable::of(sympl::hamiltonians::pendulum{1, 1, 1}), pendulum.energy);
     for (const char* name : {"leapfrog_kdk", "blanes_moan_s6", "rk4", "dprkn8", "dprkn8_controlled", "odeint_dopri5"})
         compare(pendulum, pendulum_generic, name, 0.05);
 
-    const problem chain = make_problem("fpu_beta", {}, {}, {}, "test");
+    const runnable_system chain = make_system("fpu_beta", {}, {}, {}, "test");
     const run_function chain_generic =
         detail::generic_run(erased_separable::of(sympl::hamiltonians::fpu_beta{1}), chain.energy);
     for (const char* name : {"yoshida_6", "dprkn12"}) compare(chain, chain_generic, name, 0.1);
 
-    const problem dp = make_problem("double_pendulum", {}, {}, {}, "test");
+    const runnable_system dp = make_system("double_pendulum", {}, {}, {}, "test");
     const run_function dp_generic =
         detail::generic_run(erased_general::of(sympl::hamiltonians::double_pendulum{1, 1, 1, 1, 1}), dp.energy);
     for (const char* name : {"gauss_6", "tao(yoshida_6)", "semiexplicit(yoshida_4)"})

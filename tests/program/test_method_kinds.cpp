@@ -109,8 +109,8 @@ TEST_CASE("method kinds: resumability comes from the registry row, and a refused
             CHECK(why == (*reason ? "method '" + std::string(member.name) + "' cannot be checkpointed: " + reason : ""));
         }
     }
-    const problem pendulum = make_problem("pendulum", {}, {}, {}, "test");
-    const auto checkpointed_run = [&](const problem& p, const std::string& name) {
+    const runnable_system pendulum = make_system("pendulum", {}, {}, {}, "test");
+    const auto checkpointed_run = [&](const runnable_system& p, const std::string& name) {
         run_request rq;
         rq.dt = 1e-2;
         rq.tolerance = 1e-8;
@@ -128,8 +128,8 @@ TEST_CASE("method kinds: resumability comes from the registry row, and a refused
         CAPTURE(name);
         CHECK(checkpointed_run(pendulum, name) == 3);  // after steps 3, 6 and 9 of 10
     }
-    CHECK(checkpointed_run(make_problem("outer_solar_system", {}, {}, {}, "test"), "wh(leapfrog_kdk)") == 3);
-    const problem kepler = make_problem("kepler", {}, {}, {}, "test");
+    CHECK(checkpointed_run(make_system("outer_solar_system", {}, {}, {}, "test"), "wh(leapfrog_kdk)") == 3);
+    const runnable_system kepler = make_system("kepler", {}, {}, {}, "test");
     for (const char* name : {"logh(leapfrog_kdk)", "extrapolated(logh(leapfrog_kdk), 2)"}) {
         CAPTURE(name);
         CHECK(checkpointed_run(kepler, name) >= 3);  // fictitious steps of 0.01 over t = 0.1
@@ -143,7 +143,7 @@ TEST_CASE("method kinds: resumability comes from the registry row, and a refused
 // std::vector). The same records with the history reset (order 4, first
 // step) resume to other bits: the four numbers are what make it exact.
 TEST_CASE("method kinds: odeint_bulirsch_stoer resumes from any checkpoint to the bits of an uncheckpointed run") {
-    const problem kepler = make_problem("kepler", {{"eccentricity", 0.6}}, {}, {}, "test");
+    const runnable_system kepler = make_system("kepler", {{"eccentricity", 0.6}}, {}, {}, "test");
     const auto run = [&](std::size_t every_steps, const checkpoint_record* resume, std::vector<checkpoint_record>* saved) {
         run_request rq;
         rq.tolerance = 1e-9;
@@ -193,7 +193,7 @@ TEST_CASE("method kinds: odeint_bulirsch_stoer resumes from any checkpoint to th
 // non-finite state with the message sympl's drivers give: the step, the time
 // it started from and its size (dopri5's first step is a thousandth of the span).
 TEST_CASE("method kinds: an Odeint run that blows up says at which step, from where and with what step") {
-    const problem p = make_problem("harmonic_oscillator", {}, {}, {}, "test");
+    const runnable_system p = make_system("harmonic_oscillator", {}, {}, {}, "test");
     run_request rq;
     rq.dt = 1e100;
     rq.tolerance = 1e-9;
@@ -353,7 +353,7 @@ TEST_CASE("method kinds: wh(<table>) resolves a plain table and runs only on a p
     for (const char* bad : {"wh(chin_4a)", "wh(rk4)", "wh(extrapolated(leapfrog_kdk, 2))", "wh(nonesuch)"})
         CHECK_THROWS_WITH_AS(resolve_method(bad, {}), doctest::Contains("expected wh(<a table of kicks and drifts"),
                              sympl::invalid_argument);
-    const problem pendulum = make_problem("pendulum", {}, {}, {}, "test");
+    const runnable_system pendulum = make_system("pendulum", {}, {}, {}, "test");
     CHECK_FALSE(pendulum.form.planetary);
     CHECK(why_not(*wh, pendulum.form) ==
           "method 'wh( leapfrog_kdk )' needs a planetary system (a star and planets with masses and G; "
@@ -402,7 +402,7 @@ TEST_CASE("method kinds: wh(<table>, corrector, kernel, coordinates) checks its 
 // relative to the Sun's, the T + V leapfrog's O(h^2): the same step, an error
 // smaller by about 1/eps; and order 2 in h (Wisdom & Holman 1991).
 TEST_CASE("method kinds: wh(leapfrog_kdk) on the outer solar system, order 2 and far below the T + V leapfrog") {
-    const problem p = make_problem("outer_solar_system", {}, {}, {}, "test");
+    const runnable_system p = make_system("outer_solar_system", {}, {}, {}, "test");
     REQUIRE(p.form.planetary);
     const double t_end = 4000;
     const std::vector<double> reference = p.reference(0.0, t_end, 10.0, p.x0);

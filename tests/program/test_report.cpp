@@ -63,7 +63,7 @@ t_end = 10
 }
 
 TEST_CASE("report: runs side by side on threads measure the same numbers as one at a time, and say where time went") {
-    // Each run has a problem of its own and a reference its two runs on two
+    // Each run has a system of its own and a reference its two runs on two
     // threads: every measured number (steps, evaluations, errors) must be
     // the same bits whatever the thread count; only the times differ.
     const scene s = parse_scene(R"(name = "pendulum"

@@ -15,7 +15,7 @@ namespace test_program_test_run_charged {  // one per file: the tests build in b
 using namespace sympl::app;
 
 namespace {
-run_result run(const problem& p, const std::string& method, double dt, double t_end) {
+run_result run(const runnable_system& p, const std::string& method, double dt, double t_end) {
     run_request rq;
     rq.dt = dt;
     rq.timing_repeats = 0;
@@ -25,7 +25,7 @@ run_result run(const problem& p, const std::string& method, double dt, double t_
 }  // namespace
 
 TEST_CASE("run_charged: the charged methods at their order on charged_particle, H kept") {
-    const problem p = make_problem("charged_particle", {}, {}, {}, "test");
+    const runnable_system p = make_system("charged_particle", {}, {}, {}, "test");
     CHECK(p.form.charged);
     const double t_end = 4;
     const std::vector<double> reference = p.reference(0.0, t_end, 0.002, p.x0);
@@ -46,7 +46,7 @@ TEST_CASE("run_charged: the charged methods at their order on charged_particle, 
 }
 
 TEST_CASE("run_charged: charged_uniform runs the pushers and the canonical splitting, refusals name the reason") {
-    const problem p = make_problem("charged_uniform", {}, {}, {}, "test");
+    const runnable_system p = make_system("charged_uniform", {}, {}, {}, "test");
     for (const char* method : {"boris", "boris(relativistic = true)", "cartesian_split(kahan_li_8)", "gauss_6",
                                "odeint_rk4"}) {
         CAPTURE(std::string(method));
@@ -56,11 +56,11 @@ TEST_CASE("run_charged: charged_uniform runs the pushers and the canonical split
     }
     CHECK_THROWS_WITH_AS(run(p, "cylindrical_split(leapfrog_kdk)", 0.1, 1), doctest::Contains("symmetric about the z axis"),
                          sympl::invalid_argument);
-    const problem relativistic = make_problem("charged_uniform", {{"speed_of_light", 3}}, {}, {}, "test");
+    const runnable_system relativistic = make_system("charged_uniform", {{"speed_of_light", 3}}, {}, {}, "test");
     CHECK(run(relativistic, "boris(relativistic = true)", 0.05, 10).max_energy_error < 1e-3);
     CHECK_THROWS_WITH_AS(run(relativistic, "boris", 0.1, 1), doctest::Contains("needs Newton's motion"),
                          sympl::invalid_argument);
-    const problem pendulum = make_problem("pendulum", {}, {}, {}, "test");
+    const runnable_system pendulum = make_system("pendulum", {}, {}, {}, "test");
     CHECK_THROWS_WITH_AS(run(pendulum, "boris", 0.1, 1), doctest::Contains("needs a charged particle"),
                          sympl::invalid_argument);
     CHECK_THROWS_WITH_AS(resolve_method("cartesian_split(blanes_moan_s6)", {}), doctest::Contains("blanes_moan_s6"),

@@ -137,7 +137,7 @@ TEST_CASE("run: a sweep runs its first (largest) value, says so, and the impossi
     std::ostringstream json;
     run_scene(s, true, json);
     CHECK(nlohmann::json::parse(json.str())[0]["steps"] == 10);
-    const problem p = problem_of(s);
+    const runnable_system p = system_of(s);
     CHECK_THROWS_WITH_AS(check_run_size(plan_runs(s, p, sweep_use::whole), default_max_steps),
                          doctest::Contains("method 'leapfrog_kdk' at dt = "), scene_error);
     // One value: nothing to say.
@@ -254,7 +254,7 @@ TEST_CASE("run: an output time at t_end gets its row though the last step's time
     const scene s = parse_scene("system = \"pendulum\"\nmethods = [\"leapfrog_kdk\", \"odeint_rk4\"]\ndt = 0.3\n"
                                 "t_end = 0.9\n[output]\ntimes = [0, 0.45, 0.9]\n",
                                 "end.toml");
-    const problem p = problem_of(s);
+    const runnable_system p = system_of(s);
     for (const scene_method& m : s.methods) {
         CAPTURE(m.name);
         std::ostringstream rows;
@@ -281,7 +281,7 @@ TEST_CASE("run: output times of a controlled RKN pair are its own interpolation'
                                 "\"dprkn12_controlled\"]\ndt = 0.1\nt_end = 10\n[output]\n"
                                 "times = {from = 0.013, to = 9.913, count = 901}\n",
                                 "dense.toml");
-    const problem p = problem_of(s);
+    const runnable_system p = system_of(s);
     const auto reference = rows_of("pendulum", 0.001, "trajectory_every = 1");
     REQUIRE(reference.size() == 10001);
     for (const double tolerance : {1e-8, 1e-10}) {
@@ -324,7 +324,7 @@ TEST_CASE("run: output times after a resume from a checkpoint: the rows of the u
     const scene s = parse_scene("system = \"kepler\"\nparameters = {eccentricity = 0.7}\nmethods = [\"blanes_moan_s6\"]\n"
                                 "dt = 0.01\nt_end = 5\n[output]\ntimes = {from = 0, to = 5, count = 201}\n",
                                 "resume.toml");
-    const problem p = problem_of(s);
+    const runnable_system p = system_of(s);
     std::ostringstream whole;
     run_request rq = timed_rows_request(s, 0.01, whole);
     std::vector<checkpoint_record> saved;

@@ -251,7 +251,7 @@ TEST_CASE("scene: runs beyond the step limit are refused up front with the figur
     const scene s = parse_scene("system = \"harmonic_oscillator\"\nmethods = [\"leapfrog_kdk\", "
                                 "\"extrapolated(leapfrog_kdk, 4)\"]\ndt = [0.1, 0.001]\nt_end = 1000\n",
                                 "long.toml");
-    const problem p = problem_of(s);
+    const runnable_system p = system_of(s);
     // sympl run uses the first dt: 1e4 steps, extrapolated 1e5 inner steps.
     CHECK_NOTHROW(check_run_size(plan_runs(s, p, sweep_use::first), 1e5));
     CHECK_THROWS_WITH_AS(check_run_size(plan_runs(s, p, sweep_use::first), 99999),
@@ -263,16 +263,16 @@ TEST_CASE("scene: runs beyond the step limit are refused up front with the figur
     // Without an exact solution the reference counts: 1.5 runs at a quarter of the finest step.
     const scene pendulum = parse_scene("system = \"pendulum\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.1\nt_end = 1000\n",
                                        "pendulum.toml");
-    CHECK_THROWS_WITH_AS(check_run_size(plan_runs(pendulum, problem_of(pendulum), sweep_use::first), 5e4),
+    CHECK_THROWS_WITH_AS(check_run_size(plan_runs(pendulum, system_of(pendulum), sweep_use::first), 5e4),
                          doctest::Contains("the reference (its dt is a quarter of the finest step, 0.1) at dt = 0.025"),
                          scene_error);
-    CHECK_NOTHROW(check_run_size(plan_runs(pendulum, problem_of(pendulum), sweep_use::first), 6e4));
+    CHECK_NOTHROW(check_run_size(plan_runs(pendulum, system_of(pendulum), sweep_use::first), 6e4));
 }
 
 TEST_CASE("scene: an initial state of infinite energy is refused, not reported as energy error 0") {
     const auto error_of_initial = [](const std::string& system, const std::string& initial) {
         try {
-            problem_of(parse_scene("system = \"" + system + "\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.1\nt_end = 1\n" +
+            system_of(parse_scene("system = \"" + system + "\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.1\nt_end = 1\n" +
                                        "initial = " + initial + "\n",
                                    "x.toml"));
         } catch (const scene_error& e) {

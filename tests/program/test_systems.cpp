@@ -36,7 +36,7 @@ TEST_CASE("systems: every system runs every method the registry says it can, and
     // tables and processed methods, a catalog and an inline table, a logh, two extrapolated, a tao and a semiexplicit
     CHECK(methods.size() == 35 + sympl::force_gradient_catalog().size() + sympl::processed_catalog().size());
     for (const system_entry& entry : systems()) {
-        const problem p = make_problem(entry.name, {}, {}, {}, "test");
+        const runnable_system p = make_system(entry.name, {}, {}, {}, "test");
         for (const method_spec& m : methods) {
             CAPTURE(entry.name);
             CAPTURE(m.name);
@@ -78,20 +78,20 @@ TEST_CASE("systems: defaults lie in their ranges and a value outside one is refu
             CHECK_FALSE(q.accepts(std::nan("")));
             CHECK_FALSE(q.meaning.empty());
         }
-        const problem p = make_problem(entry.name, {}, {}, {}, "test");
+        const runnable_system p = make_system(entry.name, {}, {}, {}, "test");
         CHECK(p.x0.size() == 2 * p.degrees_of_freedom);
         CHECK(bool(p.exact) == entry.exact);
         CHECK(p.hamiltonian == bool(p.energy));
     }
-    CHECK_THROWS_WITH_AS(make_problem("pendulum", {{"mass", -1}}, {}, {}, "s.toml"),
+    CHECK_THROWS_WITH_AS(make_system("pendulum", {{"mass", -1}}, {}, {}, "s.toml"),
                          "s.toml: pendulum mass = -1; expected a finite number > 0", sympl::invalid_argument);
-    CHECK_THROWS_WITH_AS(make_problem("fpu_beta", {{"n", 2.5}}, {}, {}, "s.toml"),
+    CHECK_THROWS_WITH_AS(make_system("fpu_beta", {{"n", 2.5}}, {}, {}, "s.toml"),
                          "s.toml: fpu_beta n = 2.5; expected an integer in [1, 1000000]", sympl::invalid_argument);
-    CHECK_THROWS_WITH_AS(make_problem("kepler", {{"eccentricity", 1}}, {}, {}, "s.toml"),
+    CHECK_THROWS_WITH_AS(make_system("kepler", {{"eccentricity", 1}}, {}, {}, "s.toml"),
                          "s.toml: kepler eccentricity = 1; expected a finite number in [0, 1)", sympl::invalid_argument);
-    CHECK_THROWS_WITH_AS(make_problem("kepler", {{"mu", 2}, {"scale", 3}}, {}, {}, "s.toml"),
+    CHECK_THROWS_WITH_AS(make_system("kepler", {{"mu", 2}, {"scale", 3}}, {}, {}, "s.toml"),
                          "s.toml: kepler: mu = 2 and scale = 3; expected one of them left at 1", sympl::invalid_argument);
-    CHECK_THROWS_WITH_AS(make_problem("pendulum", {}, {1, 2}, {0, 0}, "s.toml"),
+    CHECK_THROWS_WITH_AS(make_system("pendulum", {}, {1, 2}, {0, 0}, "s.toml"),
                          "s.toml: initial q has 2 and p 2 values; pendulum expects 1 each", sympl::invalid_argument);
 }
 
@@ -99,7 +99,7 @@ TEST_CASE("systems: an exact solution is the flow: a 10th-order run at a small s
     for (const system_entry& entry : systems()) {
         if (!entry.exact) continue;
         CAPTURE(entry.name);
-        const problem p = make_problem(entry.name, {}, {}, {}, "test");
+        const runnable_system p = make_system(entry.name, {}, {}, {}, "test");
         CHECK(relative_difference(p.exact(0), p.x0) < 1e-15);
         const method_spec m = *resolve_method(p.form.separable_hamiltonian ? "sofroniou_spaletta_10" : "rk4", {});
         run_request rq;
@@ -111,7 +111,7 @@ TEST_CASE("systems: an exact solution is the flow: a 10th-order run at a small s
 }
 
 TEST_CASE("systems: a scene's own initial state replaces the default and drops the exact solution") {
-    const problem p = make_problem("harmonic_oscillator", {{"omega", 2}}, {0.5}, {0.25}, "test");
+    const runnable_system p = make_system("harmonic_oscillator", {{"omega", 2}}, {0.5}, {0.25}, "test");
     CHECK(p.x0 == std::vector<double>{0.5, 0.25});
     CHECK_FALSE(p.exact);
     CHECK(p.energy(p.x0) == doctest::Approx(0.25 * 0.25 / 2 + 4 * 0.25 / 2));
@@ -128,7 +128,7 @@ TEST_CASE("systems: each states its characteristic period, and one period of a p
     // Exact solutions one period on are back at the start (Kepler at two scales, the oscillator at omega = 3).
     const auto closes = [](const std::string& system, const parameter_values& given) {
         const system_entry& entry = *find_system(system);
-        const problem p = make_problem(system, given, {}, {}, "test");
+        const runnable_system p = make_system(system, given, {}, {}, "test");
         return relative_difference(p.exact(period_of(entry, with_defaults(entry, given, "test"))), p.x0);
     };
     CHECK(closes("kepler", {}) < 1e-12);
@@ -139,7 +139,7 @@ TEST_CASE("systems: each states its characteristic period, and one period of a p
     const system_entry& kepler = *find_system("kepler");
     const double period = period_of(kepler, with_defaults(kepler, {{"mu", 2}}, "test"));
     CHECK(period == doctest::Approx(two_pi * std::sqrt(0.4 * 0.4 * 0.4 / 2)).epsilon(1e-14));
-    const problem p = make_problem("kepler", {{"mu", 2}}, {}, {}, "test");
+    const runnable_system p = make_system("kepler", {{"mu", 2}}, {}, {}, "test");
     run_request rq;
     rq.dt = period / 4000;
     rq.timing_repeats = 0;
@@ -161,10 +161,10 @@ TEST_CASE("systems: output columns count from 1, or name the bodies") {
 }
 
 TEST_CASE("systems: an unknown system or parameter gets the nearest names") {
-    CHECK_THROWS_WITH_AS(make_problem("kepplr", {}, {}, {}, "s.toml"),
+    CHECK_THROWS_WITH_AS(make_system("kepplr", {}, {}, {}, "s.toml"),
                          doctest::Contains("s.toml: unknown system 'kepplr'; did you mean 'kepler'? expected one of: "),
                          sympl::invalid_argument);
-    CHECK_THROWS_WITH_AS(make_problem("pendulum", {{"lenght", 2}}, {}, {}, "s.toml"),
+    CHECK_THROWS_WITH_AS(make_system("pendulum", {{"lenght", 2}}, {}, {}, "s.toml"),
                          "s.toml: pendulum has no parameter 'lenght'; did you mean 'length'? expected one of: mass, "
                          "length, gravity",
                          sympl::invalid_argument);

@@ -289,7 +289,7 @@ TEST_CASE("test particles belt: a checkpointed map resumes the pieces no file ho
 
 TEST_CASE("test particles belt: planets that blow up stop the run with the figures, nothing written") {
     // Jupiter's momentum 1e300: finite, accepted, and non-finite after its first drift.
-    const problem planets = problem_of(parse_scene(belt, "belt.toml"));
+    const runnable_system planets = system_of(parse_scene(belt, "belt.toml"));
     const std::size_t n = planets.x0.size() / 2;
     std::string q = "q = [", p = "p = [";
     for (std::size_t i = 0; i < n; ++i) {

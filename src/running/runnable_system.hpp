@@ -70,7 +70,7 @@ struct run_result {
     bool generic = false;
 };
 
-// A method's run over [t0, t_end] from x0 (model.hpp).
+// A method's run over [t0, t_end] from x0 (runnable.hpp).
 using run_function = std::function<run_result(const method_spec&, const run_request&, double t0, double t_end,
                                               const std::vector<double>& x0)>;
 
@@ -102,7 +102,7 @@ using section_function = std::function<std::vector<std::vector<double>>(const ta
 using reference_function =
     std::function<std::vector<double>(double t0, double t_end, double dt, const std::vector<double>& x0)>;
 
-struct problem {
+struct runnable_system {
     std::string system;
     bool hamiltonian = true;  // has an energy to watch
     system_form form;         // what its equations offer a method
@@ -120,9 +120,9 @@ struct problem {
     // throws invalid_argument naming it), then `runner`, which trusts it.
     run_result run(const method_spec& m, const run_request& rq, double t0, double t_end,
                    const std::vector<double>& x0) const;
-    run_function runner;  // the system's runs (model.hpp), unchecked
+    run_function runner;  // the system's runs (runnable.hpp), unchecked
     // The kinds compiled for the system's own type (its registry entry's,
-    // model.hpp); the others run on the generic path.
+    // runnable.hpp); the others run on the generic path.
     compiled_methods compiled;
     // The ensemble runner (separable Hamiltonians only; empty otherwise).
     ensemble_function ensemble;

@@ -1,5 +1,5 @@
-// What every problem shares.
-#include "running/problem.hpp"
+// What every runnable system shares.
+#include "running/runnable_system.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 
 namespace sympl::app {
 
-run_result problem::run(const method_spec& m, const run_request& rq, double t0, double t_end,
+run_result runnable_system::run(const method_spec& m, const run_request& rq, double t0, double t_end,
                          const std::vector<double>& x0) const {
     if (const std::string why = why_not(m, form); !why.empty()) throw invalid_argument(why);
     return runner(m, rq, t0, t_end, x0);

@@ -1,7 +1,7 @@
 #pragma once
-// What a Hamiltonian offers the program beside its runs (problem.hpp): a
+// What a Hamiltonian offers the program beside its runs (runnable_system.hpp): a
 // long-double reference, ensembles and Poincare sections, each a function of
-// the system's type. model.hpp builds them for a system's own type where its
+// the system's type. runnable.hpp builds them for a system's own type where its
 // registry entry asks (ensembles); generic_path.cpp builds them once for the
 // type-erased systems, which serve every other system.
 #include <utility>

@@ -1,5 +1,5 @@
 #pragma once
-// model(): a system of hamiltonians/ as the program's type-erased problem.
+// runnable(): a system of hamiltonians/ as the program's type-erased runnable_system.
 // Its run() takes any method kind (run_kinds.hpp) over a span: the observed
 // run (energy, trajectory, blow-up, checkpoints), then the timed runs with
 // nothing observed; the methods its registry entry compiles for its own type
@@ -15,7 +15,7 @@
 #include "running/general_system.hpp"
 #include "running/generic_path.hpp"
 #include "running/run_kinds.hpp"
-#include "running/problem_parts.hpp"
+#include "running/runnable_parts.hpp"
 #include "report/timing.hpp"
 
 namespace sympl::app {
@@ -143,7 +143,7 @@ private:
         for (double v : x0) size0 = std::max(size0, std::fabs(v));
         const bool timed = !rq.output_times.empty();
         timed_rows<Sys, State> rows(sys_, rq);
-        // H as the problem's energy computes it, on a dynamic state (the same
+        // H as the system's energy function computes it, on a dynamic state (the same
         // bits), without its conversion and allocations at every step.
         phase_space<double> held = from_stacked<phase_space<double>>(x0);
         const auto energy_of = [&](const State& x) {
@@ -244,7 +244,7 @@ std::function<std::vector<double>(double)> exact_flow(H h, X x0) {
     return [h, x0](double t) { return detail::to_vector(h.exact(x0, t)); };
 }
 
-// What a system's registry entry compiles for its own type (model's template
+// What a system's registry entry compiles for its own type (runnable's template
 // argument): the method kinds its built-in scenes run, or of the classic kind
 // only the steppers they name (tests/program/test_generic_path.cpp holds
 // every entry to that), and ensembles and Poincare sections where a built-in
@@ -291,21 +291,21 @@ constexpr bool runs_any() {
 }
 }  // namespace detail
 
-// A system of hamiltonians/ as the program's problem: its default state x0
+// A system of hamiltonians/ as the program runs it: its default state x0
 // and, when it has one, its exact solution from x0.
 // Dim: the degrees of freedom when fixed (small systems), Eigen::Dynamic otherwise.
 // A general H(q, p) that does not split runs as general_system<H>.
 template <int Dim = Eigen::Dynamic, compiled Own = compiled{.kinds = all_kinds, .extrapolated = true, .ensembles = true},
           class Sys>
-problem model(Sys sys, std::vector<double> x0, std::function<std::vector<double>(double)> exact = nullptr) {
+runnable_system runnable(Sys sys, std::vector<double> x0, std::function<std::vector<double>(double)> exact = nullptr) {
     using V = phase_space<double>::vector;
     if constexpr (general_hamiltonian<Sys, V> && !separable_hamiltonian<Sys, V> && !detail::is_general_system<Sys>) {
-        return model<Dim, Own>(general_system<Sys>{std::move(sys)}, std::move(x0), std::move(exact));
+        return runnable<Dim, Own>(general_system<Sys>{std::move(sys)}, std::move(x0), std::move(exact));
     } else {
         if (Dim != Eigen::Dynamic && x0.size() != std::size_t(2 * Dim))
-            throw invalid_argument("model: a state of " + std::to_string(x0.size()) + " numbers for " +
+            throw invalid_argument("runnable: a state of " + std::to_string(x0.size()) + " numbers for " +
                                    std::to_string(Dim) + " degrees of freedom");
-        problem p;
+        runnable_system p;
         p.form = detail::form_of<Sys>();
         p.hamiltonian = p.form.general_hamiltonian;  // separable or not
         p.degrees_of_freedom = x0.size() / 2;
