@@ -2,6 +2,10 @@
 // Reading a scene's TOML (scene.cpp, scene_ensemble.cpp): every error names
 // the file, line and column and what was expected.
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
 #include <set>
 #include <sstream>
 #include <string>
@@ -158,6 +162,25 @@ struct reader {
         return number(n, key);
     }
 
+    // A point of a geometric sweep as the scene meant it: 1e-7 where the
+    // powers reach 1.0000000000000005e-07, the nearest 12-digit decimal when
+    // it is within 4 ulps; any other point as computed.
+    static double meant(double v) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.12g", v);
+        const double d = std::strtod(text, nullptr);
+        return std::fabs(d - v) <= 4 * std::numeric_limits<double>::epsilon() * std::fabs(v) ? d : v;
+    }
+
+    // A computed step or tolerance that overflowed to inf or underflowed to 0
+    // is refused here, at its key, with what it was made of.
+    double representable(const toml::node& n, const std::string& key, double v, const std::string& made_of) const {
+        if (!(std::isfinite(v) && v > 0))
+            fail(n, "'" + key + "': " + made_of + " gives " + shortest(v) +
+                        "; expected a finite value > 0");
+        return v;
+    }
+
     // dt = 0.01 | [0.1, 0.05] | { from = 0.1, to = 0.001, count = 7 } (geometric)
     //    | {per_period = N}, N steps per characteristic period, N any of the above.
     std::vector<double> sweep(const toml::node& n, const std::string& key) const {
@@ -165,7 +188,8 @@ struct reader {
         if (const toml::table* t = n.as_table(); t && t->get("per_period")) {
             only_keys(*t, {"per_period"}, "'" + key + "'");
             const double p = period_for(n, key);
-            for (double steps : sweep(*t->get("per_period"), key + ".per_period")) out.push_back(p / steps);
+            for (double steps : sweep(*t->get("per_period"), key + ".per_period"))
+                out.push_back(representable(n, key, p / steps, "the period " + shortest(p) + " / " + shortest(steps)));
             std::sort(out.rbegin(), out.rend());
             return out;
         }
@@ -183,7 +207,9 @@ struct reader {
             if (!c || !count->is_integer() || *c < 1 || *c > 1000)
                 fail(*count, "'" + key + ".count' = " + text_of(*count) + "; expected an integer in [1, 1000]");
             for (std::int64_t i = 0; i < *c; ++i)
-                out.push_back(*c == 1 ? a : a * std::pow(b / a, double(i) / double(*c - 1)));
+                out.push_back(*c == 1 ? a
+                                      : representable(n, key, meant(a * std::pow(b / a, double(i) / double(*c - 1))),
+                                                      "a point between " + shortest(a) + " and " + shortest(b)));
         } else {
             out.push_back(positive(n, key));
         }

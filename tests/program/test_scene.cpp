@@ -372,4 +372,25 @@ TEST_CASE("scene: spans and steps in the system's characteristic period") {
           "scene.toml:4:20: 't_end.periods' = -2; expected a finite number > 0");
 }
 
+TEST_CASE("scene: a geometric sweep holds the decimals it meant; one past a double's range is refused at its key") {
+    const std::string head = "system = \"kepler\"\nmethods = [\"leapfrog_kdk\", \"odeint_dopri5\"]\nt_end = 1\n";
+    // 1e-4 * (1e-3)^(1/2) is 1.0000000000000005e-07 in doubles: two ulps from
+    // the 1e-7 the sweep means, which the scene now holds; 0.1 * 0.05^(1/2) =
+    // 0.0223606797749979 is no short decimal and stays as computed.
+    const scene s = parse_scene(head + "dt = {from = 0.1, to = 0.005, count = 3}\n"
+                                       "tolerances = {from = 1e-4, to = 1e-10, count = 3}\n", "s.toml");
+    REQUIRE(s.tolerances.size() == 3);
+    CHECK(s.tolerances[0] == 1e-4);
+    CHECK(s.tolerances[1] == 1e-7);
+    CHECK(s.tolerances[2] == 1e-10);
+    REQUIRE(s.dt.size() == 3);
+    CHECK(s.dt[1] == 0.1 * std::pow(0.005 / 0.1, 0.5));
+    CHECK(s.dt[2] == 0.005);
+    // Steps per period that overflow the step, and a sweep whose ratio overflows.
+    CHECK(error_of(head + "dt = {per_period = 1e-320}\n").rfind(
+              "scene.toml:4:6: 'dt': the period 6.283185307179586 / 1e-320 gives inf; expected a finite value > 0", 0) == 0);
+    CHECK(error_of(head + "dt = {from = 1e-300, to = 1e300, count = 3}\n").rfind(
+              "scene.toml:4:6: 'dt': a point between 1e-300 and 1e+300 gives inf; expected a finite value > 0", 0) == 0);
+}
+
 }  // namespace test_program_test_scene
