@@ -258,24 +258,26 @@ void fastest_per_level(const std::vector<report_row>& rows, const std::vector<ru
         md << "**" << markdown_cell(why) << "**\n\n";
         table << why << "\n";
     }
-    // Runs whose error reached order one: no solution, whatever their time. One line per scene and method.
-    std::ostringstream flagged;
+    // Runs whose error reached order one: no solution, whatever their time.
+    // One line in summary.md, before the tables it stays out of; the runs
+    // themselves in order_one_runs.csv.
+    atomic_file flagged(dir / "order_one_runs.csv");
+    flagged.stream() << csv_line({"scene", "method", "dt", "tolerance", "final_error", "max_energy_error"});
     std::size_t count = 0;
-    const report_row* previous = nullptr;
     for (const report_row& r : rows) {
         if (!r.r.stable || (r.final_error < order_one && r.r.max_energy_error < order_one)) continue;
-        const bool same = previous && previous->s == r.s && &previous->method() == &r.method();
-        if (!same) flagged << "\n- " << markdown_cell(r.s->name) << ", " << markdown_cell(r.method().name) << " at "
-                           << (r.run->dt > 0 ? "dt" : "tolerance");
-        flagged << (same ? ", " : " ") << shortest(r.run->setting());
-        previous = &r;
+        const planned_run& p = *r.run;
+        flagged.stream() << csv_line({r.s->name, r.method().name, p.dt > 0 ? shortest(p.dt) : "",
+                                      p.tolerance > 0 ? shortest(p.tolerance) : "", csv_number(r.final_error),
+                                      csv_number(r.r.max_energy_error)});
         ++count;
     }
+    flagged.commit();  // a header alone when none did: no older report's list left behind
     if (count) {
-        md << "**" << count << " runs reached an error of order one (final or energy error >= " << format_number(order_one)
-           << "): no solution at any level, left out of the tables and figures:**\n" << flagged.str() << "\n\n";
+        md << count << " runs reached an error of order one (final or energy error >= " << format_number(order_one)
+           << "): no solution at any level, left out of the tables and figures (order_one_runs.csv lists them).\n\n";
         table << count << " runs reached an error of order one (>= " << format_number(order_one)
-              << ") and are left out of the tables (summary.md names them)\n";
+              << ") and are left out of the tables (order_one_runs.csv lists them)\n";
     }
     if (!any) return;
     atomic_file csv(dir / "time_to_accuracy.csv");

@@ -327,7 +327,14 @@ t_end = 12.566370614359172
     CHECK(summary.find("## Fastest method per max energy error") != std::string::npos);
     CHECK(summary.find("| pick |") != std::string::npos);
     CHECK(summary.find("reached an error of order one") != std::string::npos);
-    CHECK(summary.find("- kep, leapfrog_kdk at dt 5") != std::string::npos);
+    CHECK(summary.find("(order_one_runs.csv lists them)") != std::string::npos);
+    const auto flagged = read_csv(dir / "order_one_runs.csv");
+    REQUIRE(flagged.size() >= 2);
+    CHECK(flagged[0] == std::vector<std::string>{"scene", "method", "dt", "tolerance", "final_error", "max_energy_error"});
+    CHECK(flagged[1][0] == "kep");
+    CHECK(flagged[1][1] == "leapfrog_kdk");
+    CHECK(flagged[1][2] == "5");
+    CHECK(std::stod(flagged[1][4]) >= 0.1);
     CHECK(out.str().find("max energy error:") != std::string::npos);
     const auto rows = read_csv(dir / "time_to_accuracy.csv");
     REQUIRE(rows.size() > 1);
