@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <cstdio>
 #include <numbers>
 #include <vector>
@@ -175,8 +176,18 @@ TEST_CASE("scene: an [ensemble] is read in the file's axis order, and its errors
           std::string::npos);
 }
 
-TEST_CASE("scene: files too large are refused before they are read, NUL bytes named with their line") {
-    CHECK_THROWS_WITH_AS(load_scene("/dev/zero"), doctest::Contains("larger than 1048576 bytes"), scene_error);
+TEST_CASE("scene: files too large or not files are refused before they are read, NUL bytes named with their line") {
+    CHECK_THROWS_WITH_AS(load_scene("/dev/zero"),
+                         doctest::Contains("/dev/zero: the scene file is a character device; expected a regular file"),
+                         scene_error);
+    CHECK_THROWS_WITH_AS(load_scene("/tmp"), doctest::Contains("/tmp: the scene file is a directory"), scene_error);
+    const std::string large = "/tmp/sympl_test_large_" + std::to_string(::getpid()) + ".toml";
+    { std::ofstream create(large); }
+    std::filesystem::resize_file(large, (std::size_t(1) << 20) + 1);  // sparse: no disk used
+    CHECK_THROWS_WITH_AS(load_scene(large),
+                         doctest::Contains("the scene file is larger than 1048576 bytes; expected at most that"),
+                         scene_error);
+    std::remove(large.c_str());
     const std::string path = "/tmp/sympl_test_nul_" + std::to_string(::getpid()) + ".toml";
     {
         std::ofstream f(path, std::ios::binary);
@@ -372,7 +383,7 @@ TEST_CASE("scene: spans and steps in the system's characteristic period") {
           "scene.toml:4:20: 't_end.periods' = -2; expected a finite number > 0");
 }
 
-TEST_CASE("scene: a geometric sweep holds the decimals it meant; one past a double's range is refused at its key") {
+TEST_CASE("scene: a geometric sweep holds the decimals it meant, and one past a double's range is refused at its key") {
     const std::string head = "system = \"kepler\"\nmethods = [\"leapfrog_kdk\", \"odeint_dopri5\"]\nt_end = 1\n";
     // 1e-4 * (1e-3)^(1/2) is 1.0000000000000005e-07 in doubles: two ulps from
     // the 1e-7 the sweep means, which the scene now holds; 0.1 * 0.05^(1/2) =
