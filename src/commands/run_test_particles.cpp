@@ -25,6 +25,7 @@
 #include <sympl/planetary/wisdom_holman_stepper.hpp>
 
 #include "reading/csv_numbers.hpp"
+#include "reading/file_text.hpp"
 #include "commands/ensemble_run.hpp"
 #include "output/format.hpp"
 #include "output/row_checkpoint.hpp"
@@ -42,12 +43,9 @@ const std::vector<std::string> element_columns{"a", "e", "inclination", "node", 
 // elements = "file.csv": a header naming the columns, a and e first, then
 // any leading part of inclination, node, pericentre, mean_anomaly (degrees).
 std::vector<orbital_elements> read_elements(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw scene_error(path + ": cannot open the orbital elements file");
-    in.seekg(0, std::ios::end);
-    if (std::size_t(in.tellg()) > max_elements_bytes)
-        throw scene_error(path + ": larger than " + std::to_string(max_elements_bytes) + " bytes; expected at most that");
-    in.seekg(0);
+    const file_text read = read_file_text(path, max_elements_bytes);
+    if (!read.failure.empty()) throw scene_error(path + ": the orbital elements file " + read.failure);
+    std::istringstream in(read.text);
     std::string line, header;
     std::size_t number = 0, columns = 0;
     std::vector<orbital_elements> orbits;

@@ -11,6 +11,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "reading/file_text.hpp"
+
 #include <sympl/core/error.hpp>
 
 namespace sympl::app {
@@ -135,9 +137,9 @@ void write_durably(const fs::path& file, const std::string& text) {
 
 checkpoint_record read_checkpoint(const fs::path& file, const std::string& scene_hash, const std::string& method,
                                   double dt) {
-    std::ifstream in(file, std::ios::binary);
-    if (!in) refuse(file, "cannot be opened");
-    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    file_text read = read_file_text(file, max_checkpoint_file_bytes);
+    if (!read.failure.empty()) refuse(file, read.failure);
+    const std::string text = std::move(read.text);
     const std::string head = "sympl-checkpoint " + std::to_string(checkpoint_format) + "\n";
     if (text.rfind("sympl-checkpoint ", 0) != 0) refuse(file, "is not a sympl checkpoint");
     if (text.rfind(head, 0) != 0) refuse(file, "has another format version; expected " + std::to_string(checkpoint_format));

@@ -9,6 +9,7 @@
 #include <sympl/core/error.hpp>
 
 #include "output/checkpoint.hpp"
+#include "reading/file_text.hpp"
 
 namespace sympl::app {
 
@@ -51,9 +52,9 @@ std::vector<std::pair<fs::path, std::string>> read_row_checkpoints(const std::st
                                                                    const std::string& scene_hash) {
     std::vector<std::pair<fs::path, std::string>> texts;
     for (const fs::path& path : files_of(file, kind, false)) {
-        std::ifstream stream(path, std::ios::binary);
-        if (!stream) refuse_row_checkpoint(kind, path, "cannot be opened");
-        const std::string text((std::istreambuf_iterator<char>(stream)), std::istreambuf_iterator<char>());
+        file_text read = read_file_text(path, max_checkpoint_file_bytes);
+        if (!read.failure.empty()) refuse_row_checkpoint(kind, path, read.failure);
+        const std::string text = std::move(read.text);
         if (text.rfind(head, 0) != 0) refuse_row_checkpoint(kind, path, "is not a sympl " + kind + " checkpoint of this format");
         const auto mark = text.rfind("checksum ");
         if (mark == std::string::npos || mark < head.size()) refuse_row_checkpoint(kind, path, "is truncated (no checksum)");

@@ -4,8 +4,10 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <sstream>
 
 #include "reading/csv_numbers.hpp"
+#include "reading/file_text.hpp"
 #include "output/format.hpp"
 #include "methods/run_plan.hpp"
 #include "running/systems.hpp"
@@ -27,12 +29,9 @@ std::string key_of(const system_entry& entry, const parameter_values& v) {
 }  // namespace
 
 std::vector<std::vector<double>> read_states(const std::string& path, const std::vector<std::string>& columns) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw scene_error(path + ": cannot open the states file");
-    in.seekg(0, std::ios::end);
-    if (std::size_t(in.tellg()) > max_states_bytes)
-        throw scene_error(path + ": larger than " + std::to_string(max_states_bytes) + " bytes; expected at most that");
-    in.seekg(0);
+    const file_text read = read_file_text(path, max_states_bytes);
+    if (!read.failure.empty()) throw scene_error(path + ": the states file " + read.failure);
+    std::istringstream in(read.text);
     std::string line;
     std::size_t number = 0;
     std::vector<std::vector<double>> states;

@@ -10,6 +10,7 @@
 
 #include <sympl/methods/catalog.hpp>
 
+#include "reading/file_text.hpp"
 #include "reading/scene_reader.hpp"
 
 namespace sympl::app {
@@ -345,21 +346,18 @@ scene parse_scene(const std::string& text, const std::string& source, bool quick
 }
 
 scene load_scene(const std::string& path, bool quick) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) {
         // Not a file: a built-in scene by name (those the report leaves out run so).
         if (path.find('/') == std::string::npos)
             if (std::optional<scene> s = builtin_scene(path, quick)) return *s;
         throw scene_error(path + ": cannot open the scene file (nor is it a built-in scene's name)");
     }
-    // Read at most one byte past the limit: /dev/zero or a huge file is refused
-    // without being read into memory.
-    std::string text(max_scene_bytes + 1, '\0');
-    in.read(text.data(), std::streamsize(text.size()));
-    text.resize(std::size_t(in.gcount()));
-    if (text.size() > max_scene_bytes)
-        throw scene_error(path + ": the scene file is larger than " + std::to_string(max_scene_bytes) +
-                          " bytes; expected a scene of at most that size");
+    // A regular file of at most max_scene_bytes: /dev/zero, a directory or a
+    // huge file is refused without being read into memory.
+    const file_text read = read_file_text(path, max_scene_bytes);
+    if (!read.failure.empty()) throw scene_error(path + ": the scene file " + read.failure);
+    const std::string& text = read.text;
     if (text.find('\0') != std::string::npos)
         throw scene_error(path + ":" + std::to_string(1 + std::count(text.begin(), text.begin() + std::ptrdiff_t(text.find('\0')), '\n')) +
                           ": a NUL byte; expected a text file (TOML)");

@@ -115,6 +115,11 @@ TEST_CASE("checkpoint: truncated, corrupted, foreign or mismatched files are ref
         CHECK(std::string(e.what()).find("is of method 'compensated(blanes_moan_s6)', not 'rk4'") != std::string::npos);
     }
     says(refusal(dir / "missing", r, r.scene_hash, r.dt), "cannot be opened");
+    // A directory and a device where the checkpoint should be: refused by
+    // their kind, unread (an uncaught std::ios_base::failure before).
+    fs::create_directories(dir / "a_directory");
+    says(refusal(dir / "a_directory", r, r.scene_hash, r.dt), "is a directory; expected a regular file");
+    says(refusal("/dev/zero", r, r.scene_hash, r.dt), "is a character device; expected a regular file");
     fs::remove_all(dir);
 }
 
