@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cmath>
+#include <new>
 #include <string>
 
 #include <Eigen/LU>
@@ -271,6 +272,26 @@ TEST_CASE("conformal_splitting: a table that ends and starts with a kick reuses 
     }
     CHECK(y.q[0] == x.q[0]);
     CHECK(y.p[0] == x.p[0]);
+}
+
+TEST_CASE("conformal_splitting: a new stepper on a fixed-size state kept no last kick, whatever its bytes held") {
+    // The kept kick was marked by its vectors' size, which a fixed-size state
+    // has from the start, and its time starts at 0: a stepper built where
+    // another had kept a kick at t = 0 reused that force at its first step
+    // from t = 0 (the report's damped rows counted one force too few). Built
+    // in place in the same bytes, from where the first one stopped, the new
+    // one evaluates both kicks of its first step.
+    const hamiltonians::damped_driven_oscillator o{1.0, 1.0, 0.3, 0.5, 0.7};
+    using stepper = conformal_stepper<hamiltonians::damped_driven_oscillator, State>;
+    alignas(stepper) unsigned char bytes[sizeof(stepper)];
+    auto* first = new (bytes) stepper(make_conformal_stepper<State>(o, method("leapfrog_kdk")));
+    State x(V1(1.0), V1(0.0));
+    first->step(x, -0.25, 0.25);  // its last kick at t = 0
+    first->~stepper();
+    auto* second = new (bytes) stepper(make_conformal_stepper<State>(o, method("leapfrog_kdk")));
+    second->step(x, 0.0, 0.25);
+    CHECK(second->force_evaluations() == 2);
+    second->~stepper();
 }
 
 TEST_CASE("conformal: a Hamiltonian reading past the state is refused at the first step") {

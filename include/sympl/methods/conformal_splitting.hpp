@@ -176,7 +176,7 @@ public:
         // A table that ends and starts with a kick evaluates the force at the
         // end of a step where the next step starts: reused when the next step
         // starts from the state and time this one left (bit for bit).
-        const bool reuse = last_kick_q_.size() == x.q.size() && t == last_kick_t_ && x.q == last_kick_q_;
+        const bool reuse = last_kick_kept_ && t == last_kick_t_ && x.q == last_kick_q_;
         if constexpr (State::dimension != Eigen::Dynamic) {
             // Small fixed-size states run in locals the compiler keeps in registers.
             vector q = x.q, p = x.p, f, v;
@@ -232,6 +232,7 @@ private:
                 last_kick_q_ = q;
                 last_kick_force_ = f;
                 last_kick_t_ = t + offset_[k];
+                last_kick_kept_ = true;
             }
         }
     }
@@ -313,8 +314,12 @@ private:
     Eigen::Index checked_dimension_ = -1;
     scalar sized_for_ = scalar(0);  // the step size size_, decay_ and span_ hold (0: none yet)
     std::vector<scalar> size_, decay_, span_, offset_, kick_cos_, kick_sin_;
-    vector last_kick_q_, last_kick_force_;  // q and force of the last step's final kick (empty: none)
+    // q, force and time of the last step's final kick, once kept: a flag, not
+    // the vectors' size, which a fixed-size state has from the start (its
+    // first step compared x.q with uninitialised memory).
+    vector last_kick_q_, last_kick_force_;
     scalar last_kick_t_{};
+    bool last_kick_kept_ = false;
     scalar drive_time_ = scalar(std::numeric_limits<double>::quiet_NaN());  // the time drive_at_ holds
     std::pair<scalar, scalar> drive_at_{};
     std::uint64_t force_evaluations_ = 0, velocity_evaluations_ = 0;
