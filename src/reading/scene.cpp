@@ -365,10 +365,20 @@ scene load_scene(const std::string& path, bool quick) {
 }
 
 std::vector<scene> default_scenes(bool quick) {
+    // The built-in scenes of this program's systems: a program of one's own
+    // (sympl_add_program) may have none of sympl's.
     std::vector<scene> scenes;
     for (const auto& [file, text] : builtin_scene_texts()) {
+        const toml::table doc = toml::parse(text, "built-in:" + file);
+        if (!find_system(doc["system"].value_or(std::string()))) continue;
         scene s = parse_scene(text, "built-in:" + file, quick);
         if (!s.test_particles) scenes.push_back(std::move(s));
+    }
+    if (scenes.empty()) {
+        std::string names;
+        for (const std::string& n : system_names()) names += (names.empty() ? "" : ", ") + n;
+        throw scene_error("no built-in scene is of this program's systems (" + names +
+                          "); expected scene files: report SCENE.toml ...");
     }
     return scenes;
 }

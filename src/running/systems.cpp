@@ -7,13 +7,12 @@
 
 #include "output/format.hpp"
 #include "reading/near_names.hpp"
-#include "systems/list.hpp"
 
 namespace sympl::app {
 
 namespace {
 const std::vector<system_entry>& registry() {
-    static const std::vector<system_entry> entries = every_system_entry();
+    static const std::vector<system_entry> entries = program_systems();
     return entries;
 }
 }  // namespace

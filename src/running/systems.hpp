@@ -5,7 +5,7 @@
 // state. Scene parsing, the runner, the report, `sympl systems` and the error
 // messages all read it. Adding a system is its header in hamiltonians/, one
 // file systems/<name>.cpp with its entry (written with designated
-// initializers), and its line in systems/list.hpp. Each entry is a
+// initializers), and its line in systems/list.cpp. Each entry is a
 // translation unit of its own: it compiles for its system's type the methods
 // its `compiled` names (runnable.hpp), and the files build in parallel; every
 // other method runs on the generic path (generic_path.hpp).
@@ -86,6 +86,12 @@ struct system_entry {
 
     const parameter* find(const std::string& parameter_name) const;
 };
+
+// The program's systems in order, read once: defined per program, by the
+// list sympl_add_program writes (cmake/sympl_add_program.cmake): sympl's own
+// systems (builtin_systems(), systems/list.cpp), a user's, or both.
+std::vector<system_entry> program_systems();
+std::vector<system_entry> builtin_systems();
 
 const std::vector<system_entry>& systems();
 const system_entry* find_system(const std::string& name);

@@ -1,6 +1,6 @@
-#pragma once
-// Every system the program knows, in the order `sympl systems` lists them:
-// one line each (the entry itself is in systems/<name>.cpp).
+// sympl's own systems, in the order `sympl systems` lists them: one line
+// each (the entry itself is in systems/<name>.cpp). A program's registry is
+// program_systems(), which sympl_add_program writes (systems.hpp).
 #include <vector>
 
 #include "running/systems.hpp"
@@ -26,7 +26,7 @@ system_entry charged_uniform_entry();
 system_entry double_pendulum_entry();
 system_entry product_hamiltonian_entry();
 
-inline std::vector<system_entry> every_system_entry() {
+std::vector<system_entry> builtin_systems() {
     return {
         harmonic_oscillator_entry(),
         pendulum_entry(),
