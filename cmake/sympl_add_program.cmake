@@ -6,7 +6,8 @@
 # each row a function returning a sympl::app::system_entry (written like
 # src/systems/pendulum.cpp) named in ENTRIES. Only those files are compiled;
 # the rest of the program comes prebuilt (sympl::app, sympl::program_main),
-# and WITH_BUILTIN_SYSTEMS adds sympl's own systems (sympl::builtin_systems).
+# and WITH_BUILTIN_SYSTEMS adds sympl's own systems (prebuilt in sympl::app,
+# linked only when the list names them).
 # `<target> systems` lists them in the order given, after the built-in ones.
 #
 # An entry's name may carry a namespace (`my::oscillator_entry`); it is
@@ -31,9 +32,6 @@ function(sympl_add_program target)
   endif()
   sympl_program_systems_source(${list_file} ENTRIES ${arg_ENTRIES} ${builtin})
   add_executable(${target} ${list_file} ${arg_SYSTEMS})
-  if(arg_WITH_BUILTIN_SYSTEMS)
-    target_link_libraries(${target} PRIVATE sympl::builtin_systems)
-  endif()
   target_link_libraries(${target} PRIVATE sympl::program_main sympl::app)
   if(arg_OUTPUT_NAME)
     set_target_properties(${target} PROPERTIES OUTPUT_NAME ${arg_OUTPUT_NAME})
