@@ -49,7 +49,7 @@ for signal in INT TERM; do
     [ "$rc" -eq "$expected" ] || fail "SIG$signal: exit $rc, expected $expected"
     grep -q "stopped by SIG$signal" "$work/err" || fail "SIG$signal: stderr says: $(cat "$work/err")"
     compgen -G "$work/out/.sympl-staging-*" > /dev/null && fail "SIG$signal left a staging directory"
-    compgen -G "$work/out/.*.part-*" > /dev/null && fail "SIG$signal left a temporary"
+    compgen -G "$work/out/.*.sympl-part-*" > /dev/null && fail "SIG$signal left a temporary"
     [ "$(cat "$work/out/summary.md")" = "old summary" ] || fail "SIG$signal changed summary.md"
     [ "$(cat "$work/out/work_precision.csv")" = "old csv" ] || fail "SIG$signal changed work_precision.csv"
     echo "SIG$signal: exit $rc, previous outputs kept, no temporaries"

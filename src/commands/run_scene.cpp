@@ -152,13 +152,16 @@ public:
         fs::remove(trajectory_file_, ec);
     }
 
-    // FILE.<method>.part-PID of a process killed while writing a checkpoint.
+    // FILE.<method>.sympl-part-PID of a process killed while writing a
+    // checkpoint: a regular file of that exact form, never a symlink.
     void remove_stale_temporaries() const {
-        const std::string prefix = file_.filename().string() + ".part-";
+        const std::string prefix = file_.filename().string() + ".sympl-part-";
         std::error_code ec;
         for (const auto& entry : fs::directory_iterator(file_.has_parent_path() ? file_.parent_path() : ".", ec)) {
             const std::string name = entry.path().filename().string();
-            if (name.rfind(prefix, 0) != 0) continue;
+            if (name.rfind(prefix, 0) != 0 || !is_temporary_name(name) || !entry.is_regular_file(ec) ||
+                entry.is_symlink(ec))
+                continue;
             const long pid = std::strtol(name.c_str() + prefix.size(), nullptr, 10);
             if (pid > 0 && ::kill(pid_t(pid), 0) != 0 && errno == ESRCH) fs::remove(entry.path(), ec);
         }

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "output/writers.hpp"
 #include "reading/file_text.hpp"
 
 #include <sympl/core/error.hpp>
@@ -100,8 +101,8 @@ void write_checkpoint(const fs::path& file, const checkpoint_record& r) {
 }
 
 void write_durably(const fs::path& file, const std::string& text) {
-    const fs::path temporary = file.string() + ".part-" + std::to_string(::getpid());
-    const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    const fs::path temporary = temporary_for(file, false);
+    const int fd = create_new_file(temporary);
     if (fd < 0) throw error("cannot write checkpoint " + temporary.string() + ": " + std::strerror(errno));
     std::size_t done = 0;
     while (done < text.size()) {

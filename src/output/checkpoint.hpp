@@ -55,7 +55,7 @@ std::string fnv1a_hex(const std::string& bytes);
 void write_checkpoint(const std::filesystem::path& file, const checkpoint_record& r);
 
 // `text` into `file` as a checkpoint is written: under a temporary name
-// (FILE.part-PID), fsync'ed, renamed over the previous file.
+// (FILE.sympl-part-PID, created new, never through a symlink), fsync'ed, renamed over the previous file.
 void write_durably(const std::filesystem::path& file, const std::string& text);
 
 // The record in `file`, checked against the scene, method and dt expected;

@@ -12,6 +12,7 @@
 #include <sympl/core/error.hpp>
 
 #include "output/interrupt.hpp"
+#include "output/writers.hpp"
 
 namespace sympl::app {
 
@@ -20,9 +21,17 @@ namespace fs = std::filesystem;
 namespace {
 const std::string staging_prefix = ".sympl-staging-";
 
-// Left by a process that died: a staging directory or a `.NAME.part-PID` temporary.
-bool is_stale_temporary(const std::string& name) {
-    return name.rfind(staging_prefix, 0) == 0 || (name.size() > 1 && name[0] == '.' && name.find(".part-") != std::string::npos);
+// Left by a process that died: a staging directory `.sympl-staging-PID` (a
+// directory, not a symlink) or a temporary `.NAME.sympl-part-PID` (a regular
+// file). Nothing else is ever removed: a user's `.notes.part-2024` stays.
+bool is_stale_temporary(const fs::directory_entry& entry) {
+    const std::string name = entry.path().filename().string();
+    std::error_code ec;
+    const fs::file_type type = entry.symlink_status(ec).type();
+    if (name.rfind(staging_prefix, 0) == 0)
+        return type == fs::file_type::directory && name.size() > staging_prefix.size() &&
+               name.find_first_not_of("0123456789", staging_prefix.size()) == std::string::npos;
+    return type == fs::file_type::regular && name[0] == '.' && is_temporary_name(name);
 }
 
 std::string read_all(int fd) {
@@ -37,7 +46,8 @@ std::string read_all(int fd) {
 output_set::output_set(fs::path directory) : directory_(std::move(directory)) {
     fs::create_directories(directory_);
     const fs::path lock = directory_ / ".sympl.lock";
-    lock_fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    // Never through a symlink: a planted .sympl.lock -> file would be truncated.
+    lock_fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644);
     if (lock_fd_ < 0) throw error("cannot open " + lock.string() + ": " + std::strerror(errno));
     if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
         const std::string holder = read_all(lock_fd_);
@@ -54,7 +64,7 @@ output_set::output_set(fs::path directory) : directory_(std::move(directory)) {
     for (const fs::path& d : {directory_, directory_ / "cache"}) {
         std::error_code ec;
         for (const auto& entry : fs::directory_iterator(d, ec))
-            if (is_stale_temporary(entry.path().filename().string())) {
+            if (is_stale_temporary(entry)) {
                 fs::remove_all(entry.path(), ec);
                 ++stale_removed_;
             }
@@ -75,7 +85,7 @@ void output_set::commit() {
     const std::lock_guard<std::mutex> hold(commit_mutex());
     std::vector<fs::path> files;
     for (const auto& entry : fs::directory_iterator(staging_))
-        if (entry.is_regular_file() && !is_stale_temporary(entry.path().filename().string()))
+        if (entry.is_regular_file() && !is_temporary_name(entry.path().filename().string()))
             files.push_back(entry.path());
     for (const fs::path& f : files) {
         std::error_code ec;

@@ -8,7 +8,7 @@
 // summary.md. One process at a time owns an output directory (an flock the
 // kernel drops when the process dies, even by SIGKILL); the second is told
 // which process holds it. Holding the lock also makes every staging directory
-// or `.part-PID` temporary found there stale: removed on entry.
+// or `.NAME.sympl-part-PID` temporary found there stale: removed on entry.
 #include <filesystem>
 #include <string>
 

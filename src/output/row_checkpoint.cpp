@@ -9,6 +9,7 @@
 #include <sympl/core/error.hpp>
 
 #include "output/checkpoint.hpp"
+#include "output/writers.hpp"
 #include "reading/file_text.hpp"
 
 namespace sympl::app {
@@ -23,14 +24,14 @@ fs::path directory_of(const std::string& file) {
     const fs::path f(file);
     return f.has_parent_path() ? f.parent_path() : fs::path(".");
 }
-// The finished files of `kind` (not a writer's temporary FILE.part-PID).
+// The finished files of `kind` (not a writer's temporary FILE.sympl-part-PID).
 std::vector<fs::path> files_of(const std::string& file, const std::string& kind, bool with_temporaries) {
     std::vector<fs::path> found;
     std::error_code ec;
     const std::string prefix = prefix_of(file, kind);
     for (const auto& entry : fs::directory_iterator(directory_of(file), ec)) {
         const std::string name = entry.path().filename().string();
-        if (name.rfind(prefix, 0) == 0 && (with_temporaries || name.find(".part-") == std::string::npos))
+        if (name.rfind(prefix, 0) == 0 && (with_temporaries || !is_temporary_name(name)))
             found.push_back(entry.path());
     }
     return found;

@@ -4,9 +4,11 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <iostream>
@@ -20,17 +22,42 @@ namespace sympl::app {
 namespace fs = std::filesystem;
 
 namespace {
-// .NAME.part-PID beside NAME: hidden, and unique to this process.
-fs::path temporary_for(const fs::path& path) {
-    std::string name = ".";
-    name += path.filename().string();
-    name += ".part-";
-    name += std::to_string(::getpid());
-    return path.parent_path() / name;
-}
+const std::string temporary_mark = ".sympl-part-";
 }  // namespace
 
-atomic_file::atomic_file(fs::path path) : path_(std::move(path)), temporary_(temporary_for(path_)), out_(temporary_) {
+fs::path temporary_for(const fs::path& path, bool hidden) {
+    return path.parent_path() /
+           ((hidden ? "." : "") + path.filename().string() + temporary_mark + std::to_string(::getpid()));
+}
+
+bool is_temporary_name(const std::string& name) {
+    const std::size_t at = name.rfind(temporary_mark);
+    if (at == std::string::npos || at == 0 || at + temporary_mark.size() == name.size()) return false;
+    return std::all_of(name.begin() + std::ptrdiff_t(at + temporary_mark.size()), name.end(),
+                       [](char c) { return c >= '0' && c <= '9'; });
+}
+
+int create_new_file(const fs::path& path) {
+    for (int attempt = 0; attempt < 2; ++attempt) {
+        const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+        if (fd >= 0 || errno != EEXIST) return fd;
+        struct stat st {};
+        if (::lstat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) {
+            errno = EEXIST;  // a symlink or anything but a regular file: left alone, refused
+            return -1;
+        }
+        ::unlink(path.c_str());
+    }
+    return -1;
+}
+
+// The temporary is created new (no symlink followed, nothing overwritten),
+// then opened by name for the stream.
+atomic_file::atomic_file(fs::path path) : path_(std::move(path)), temporary_(temporary_for(path_, true)) {
+    const int fd = create_new_file(temporary_);
+    if (fd < 0) throw error("cannot write " + temporary_.string() + ": " + std::strerror(errno));
+    ::close(fd);
+    out_.open(temporary_);
     if (!out_) throw error("cannot write " + temporary_.string() + ": " + std::strerror(errno));
 }
 

@@ -30,6 +30,18 @@ private:
     bool committed_ = false;
 };
 
+// The name of this process's temporary for `path`: NAME.sympl-part-PID
+// (hidden when `hidden`: .NAME.sympl-part-PID), and whether a file name is
+// such a temporary. Only names of this form are ever removed as a dead
+// process's leftovers (output_set.cpp): a user's `.notes.part-2024` is not.
+std::filesystem::path temporary_for(const std::filesystem::path& path, bool hidden);
+bool is_temporary_name(const std::string& name);
+// Creates `path` as a new regular file for writing: never through a
+// symlink, never over a file (O_EXCL | O_NOFOLLOW); a leftover regular file
+// of the same name (a dead process with this PID) is replaced. The open
+// descriptor, or -1 with errno set.
+int create_new_file(const std::filesystem::path& path);
+
 // One CSV field: quoted (with quotes doubled) when it holds a comma, a quote
 // or a line break (RFC 4180).
 std::string csv_field(const std::string& text);

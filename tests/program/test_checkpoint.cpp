@@ -76,7 +76,7 @@ TEST_CASE("checkpoint: every number comes back to the last bit") {
     CHECK(back.memory.velocity_evaluations == r.memory.velocity_evaluations);
     CHECK(back.max_energy_error == r.max_energy_error);
     CHECK(back.trajectory_bytes == r.trajectory_bytes);
-    CHECK_FALSE(fs::exists(dir / ("c.part-" + std::to_string(::getpid()))));  // no temporary left
+    CHECK_FALSE(fs::exists(dir / ("c.sympl-part-" + std::to_string(::getpid()))));  // no temporary left
     fs::remove_all(dir);
 }
 

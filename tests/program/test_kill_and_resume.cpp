@@ -57,7 +57,7 @@ bool has_checkpoint(const fs::path& dir) {
     std::error_code ec;
     for (const auto& entry : fs::directory_iterator(dir, ec)) {
         const std::string name = entry.path().filename().string();
-        if (name.find(".part-") == std::string::npos && !name.ends_with(".trajectory")) return true;
+        if (name.find(".sympl-part-") == std::string::npos && !name.ends_with(".trajectory")) return true;
     }
     return false;
 }

@@ -10,6 +10,7 @@
 #include <sympl/core/error.hpp>
 
 #include "output/output_set.hpp"
+#include "output/writers.hpp"
 #include "scratch_directory.hpp"
 
 namespace test_program_test_output_set {  // one per file: the tests build in batches (CMakeLists.txt)
@@ -62,15 +63,15 @@ TEST_CASE("output_set: a second process is told who holds the directory, a kille
     // What a process killed with SIGKILL leaves: a staging directory and .part temporaries.
     fs::create_directories(dir / ".sympl-staging-4194304");
     write(dir / ".sympl-staging-4194304" / "work_precision.csv", "half");
-    write(dir / ".summary.md.part-4194304", "half");
-    write(dir / "cache" / ".reference_1.txt.part-4194304", "half");
+    write(dir / ".summary.md.sympl-part-4194304", "half");
+    write(dir / "cache" / ".reference_1.txt.sympl-part-4194304", "half");
     write(dir / "keep.csv", "a user's file");
     {
         output_set first(dir);
         CHECK(first.stale_removed() == 3);
         CHECK_FALSE(fs::exists(dir / ".sympl-staging-4194304"));
-        CHECK_FALSE(fs::exists(dir / ".summary.md.part-4194304"));
-        CHECK_FALSE(fs::exists(dir / "cache" / ".reference_1.txt.part-4194304"));
+        CHECK_FALSE(fs::exists(dir / ".summary.md.sympl-part-4194304"));
+        CHECK_FALSE(fs::exists(dir / "cache" / ".reference_1.txt.sympl-part-4194304"));
         CHECK(fs::exists(dir / "keep.csv"));
         // Another run into the same directory while this one holds it.
         try {
@@ -86,6 +87,42 @@ TEST_CASE("output_set: a second process is told who holds the directory, a kille
     output_set again(dir);  // released with the first
     CHECK(again.stale_removed() == 0);
     fs::remove_all(dir);
+}
+
+TEST_CASE("output_set: only this program's own leftovers are removed, and no symlink is written through") {
+    const fs::path dir = scratch_directory("sympl_test_output_own_files");
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    // A user's files named like the old temporaries, or like a staging
+    // directory but not one, and symlinks of the temporaries' form: all kept.
+    write(dir / ".notes.part-2024", "a user's notes");
+    write(dir / ".sympl-staging-notes", "a user's file");
+    write(dir / "target.txt", "a user's file a symlink points to");
+    fs::create_symlink(dir / "target.txt", dir / ".summary.md.sympl-part-77");
+    fs::create_directories(dir / "elsewhere");
+    fs::create_directory_symlink(dir / "elsewhere", dir / ".sympl-staging-78");
+    {
+        output_set set(dir);
+        CHECK(set.stale_removed() == 0);
+    }
+    CHECK(fs::exists(dir / ".notes.part-2024"));
+    CHECK(fs::exists(dir / ".sympl-staging-notes"));
+    CHECK(fs::is_symlink(dir / ".summary.md.sympl-part-77"));
+    CHECK(fs::is_symlink(dir / ".sympl-staging-78"));
+    CHECK(fs::exists(dir / "elsewhere"));
+    // A lock planted as a symlink to a user's file: refused, the file untouched.
+    const fs::path other = scratch_directory("sympl_test_output_planted_lock");
+    fs::remove_all(other);
+    fs::create_directories(other);
+    fs::create_symlink(dir / "target.txt", other / ".sympl.lock");
+    CHECK_THROWS_AS(output_set{other}, sympl::error);
+    CHECK((std::stringstream() << std::ifstream(dir / "target.txt").rdbuf()).str() == "a user's file a symlink points to");
+    // A temporary planted as a symlink where an atomic_file would write: refused, the target untouched.
+    fs::create_symlink(dir / "target.txt", temporary_for(dir / "out.csv", true));
+    CHECK_THROWS_AS(atomic_file{dir / "out.csv"}, sympl::error);
+    CHECK((std::stringstream() << std::ifstream(dir / "target.txt").rdbuf()).str() == "a user's file a symlink points to");
+    fs::remove_all(dir);
+    fs::remove_all(other);
 }
 
 }  // namespace test_program_test_output_set
