@@ -44,7 +44,7 @@ void compare(const char* label, const runnable_system& p, const run_function& ge
     for (const char* name : {"leapfrog_kdk", "blanes_moan_s6", "dprkn8", "rk4"}) {
         std::vector<double> compiled, erased, ratios;
         for (int k = 0; k < rounds; ++k) {
-            const double a = ns_per_step(p.run, p, name, dt, t_end);
+            const double a = ns_per_step(p.runner, p, name, dt, t_end);
             const double b = ns_per_step(generic, p, name, dt, t_end);
             compiled.push_back(a);
             erased.push_back(b);
