@@ -106,11 +106,22 @@ std::size_t ensemble_spec::size() const {
 
 namespace {
 
+void read_initial(const reader& r, const toml::table& doc, scene& s);
+
 // system, [parameters], [initial]
 void read_system(const reader& r, const toml::table& doc, scene& s) {
     const toml::source_region top{{1, 1}, {1, 1}, nullptr};
     const toml::node* system = doc.get("system");
-    if (!system) r.fail(top, "missing 'system'; expected one of: " + join(system_names()));
+    if (!system) r.fail(top, "missing 'system'; expected one of: " + join(system_names()) +
+                                 ", or a [system] table of formulas");
+    if (const toml::table* formulas = system->as_table()) {
+        read_initial(r, doc, s);
+        if (const toml::node* p = doc.get("parameters"))
+            r.fail(*p, "[parameters] beside a [system] of formulas; expected its parameters in the [system] table, "
+                       "as parameters = {k = 1}");
+        read_formula_system(r, *system, *formulas, s);
+        return;
+    }
     s.system = r.string(*system, "system");
     const auto& systems = system_names();
     if (std::find(systems.begin(), systems.end(), s.system) == systems.end()) {
@@ -133,6 +144,11 @@ void read_system(const reader& r, const toml::table& doc, scene& s) {
             s.parameters[q.name] = v;
         }
     }
+    read_initial(r, doc, s);
+}
+
+// [initial] q and p
+void read_initial(const reader& r, const toml::table& doc, scene& s) {
     if (const toml::node* i = doc.get("initial")) {
         const toml::table* t = i->as_table();
         if (!t) r.fail(*i, "'initial' must be a table with q and p");

@@ -219,6 +219,10 @@ struct reader {
 };
 
 // [ensemble]: a grid over the system's parameters or a CSV of states.
+// A [system] table of formulas (scene_formulas.cpp), after [initial]: the
+// scene's own system, added to the program's by its name, in s.system.
+void read_formula_system(const reader& r, const toml::node& node, const toml::table& t, scene& s);
+
 ensemble_spec read_ensemble(const reader& r, const toml::node& node, const scene& s, const system_entry& entry,
                             const toml::array& methods);
 

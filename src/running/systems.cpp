@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <deque>
+#include <mutex>
 
 #include "output/format.hpp"
 #include "reading/near_names.hpp"
@@ -43,8 +45,42 @@ const parameter* system_entry::find(const std::string& parameter_name) const {
 
 const std::vector<system_entry>& systems() { return registry(); }
 
+namespace {
+// The scenes' own systems ([system] tables of formulas), added as scenes are
+// read; a deque, so that an entry found stays where it is.
+struct scene_registry {
+    std::mutex mutex;
+    std::deque<std::pair<system_entry, std::string>> entries;  // with what defines each
+};
+scene_registry& scene_systems() {
+    static scene_registry r;
+    return r;
+}
+}  // namespace
+
+const system_entry& add_scene_system(system_entry entry, const std::string& definition) {
+    for (const auto& s : registry())
+        if (s.name == entry.name)
+            throw invalid_argument("a [system] named '" + entry.name + "', the name of a built-in system; expected "
+                                   "a name of its own");
+    scene_registry& r = scene_systems();
+    std::lock_guard lock(r.mutex);
+    for (const auto& [s, defined] : r.entries)
+        if (s.name == entry.name) {
+            if (defined == definition) return s;
+            throw invalid_argument("a [system] named '" + entry.name + "' defined differently by another scene of "
+                                   "this run; expected one definition per name");
+        }
+    r.entries.emplace_back(std::move(entry), definition);
+    return r.entries.back().first;
+}
+
 const system_entry* find_system(const std::string& name) {
     for (const auto& s : registry())
+        if (s.name == name) return &s;
+    scene_registry& r = scene_systems();
+    std::lock_guard lock(r.mutex);
+    for (const auto& [s, defined] : r.entries)
         if (s.name == name) return &s;
     return nullptr;
 }
@@ -52,6 +88,9 @@ const system_entry* find_system(const std::string& name) {
 std::vector<std::string> system_names() {
     std::vector<std::string> names;
     for (const auto& s : registry()) names.push_back(s.name);
+    scene_registry& r = scene_systems();
+    std::lock_guard lock(r.mutex);
+    for (const auto& [s, defined] : r.entries) names.push_back(s.name);
     return names;
 }
 

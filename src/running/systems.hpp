@@ -94,6 +94,11 @@ std::vector<system_entry> program_systems();
 std::vector<system_entry> builtin_systems();
 
 const std::vector<system_entry>& systems();
+// A scene's own system (a [system] table of formulas, formulas/formula_entry.hpp),
+// found by name from then on like the program's; `definition` is what
+// defines it (the table's text): a second scene of the run may give the same
+// name only with the same definition. A built-in system's name is refused.
+const system_entry& add_scene_system(system_entry entry, const std::string& definition);
 const system_entry* find_system(const std::string& name);
 std::vector<std::string> system_names();
 
