@@ -1,9 +1,11 @@
 // A scene's [system] of formulas as a registry entry (formula_entry.hpp).
 #include "formulas/formula_entry.hpp"
 
+#include <cctype>
 #include <cmath>
 #include <map>
 #include <mutex>
+#include <set>
 
 #include <Eigen/Core>
 
@@ -155,6 +157,143 @@ std::shared_ptr<const prepared_formulas> prepare(std::shared_ptr<const formula> 
         }
     }
     return f;
+}
+
+}  // namespace sympl::app::formulas
+
+namespace sympl::app::formulas {
+
+namespace {
+
+bool is_name(const std::string& s) {
+    if (s.empty() || s.size() > 64 || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
+    for (char c : s)
+        if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) return false;
+    return true;
+}
+
+// A system's name: it names output files and rows.
+bool is_system_name(const std::string& s) {
+    if (s.empty() || s.size() > 64 || !std::isalpha(static_cast<unsigned char>(s[0]))) return false;
+    for (char c : s)
+        if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-')) return false;
+    return true;
+}
+
+}  // namespace
+
+const system_entry& define_formula_system(const formula_texts& t) {
+    const auto fail = [](const std::string& key, const std::string& what) -> void {
+        throw formula_input_error(key, 0, what);
+    };
+    if (!is_system_name(t.name))
+        fail("name", "system.name = '" + t.name + "'; expected letters, digits, '_' and '-', starting with a letter, "
+                     "at most 64");
+    const std::size_t n = t.q0.size();
+    if (n == 0 || t.p0.size() != n)
+        fail("initial", "initial q has " + std::to_string(n) + " values and p has " + std::to_string(t.p0.size()) +
+                            "; expected the same number, at least one");
+    if (n > std::size_t(largest_chain))
+        fail("initial", std::to_string(n) + " degrees of freedom; expected at most " + shortest(largest_chain));
+    for (double v : t.q0) if (!std::isfinite(v)) fail("initial", "initial q holds " + shortest(v) + "; expected finite values");
+    for (double v : t.p0) if (!std::isfinite(v)) fail("initial", "initial p holds " + shortest(v) + "; expected finite values");
+
+    formula_definition d;
+    d.name = t.name;
+    // Every name a formula may use, each once.
+    std::set<std::string> taken{"q", "p"};
+    for (const auto& f : function_names()) taken.insert(f);
+    const auto claim = [&](const std::string& key, const std::string& name, const std::string& what) {
+        if (!is_name(name))
+            fail(key, what + " '" + name + "' is not a name; expected letters, digits and '_', not starting with a "
+                             "digit, at most 64");
+        if (!taken.insert(name).second)
+            fail(key, what + " '" + name + "' is already a name (q, p, a function, a coordinate or a parameter); "
+                             "expected a name of its own");
+    };
+    for (const auto& [name, value] : t.parameters) {
+        claim("parameters", name, "parameter");
+        if (!std::isfinite(value)) fail("parameters", "parameter " + name + " = " + shortest(value) + "; expected a finite number");
+        d.known.parameters.push_back(name);
+        d.parameter_values.push_back(value);
+    }
+    if (!t.momenta.empty() && t.coordinates.empty())
+        fail("momenta", "'system.momenta' without 'system.coordinates'; expected both, or neither (q[i] and p[i])");
+    if (!t.coordinates.empty()) {
+        if (t.coordinates.size() != n)
+            fail("coordinates", "'system.coordinates' has " + std::to_string(t.coordinates.size()) + " names for " +
+                                    std::to_string(n) + " degrees of freedom (the initial q); expected one name each");
+        if (!t.momenta.empty() && t.momenta.size() != n)
+            fail("momenta", "'system.momenta' has " + std::to_string(t.momenta.size()) + " names for " +
+                                std::to_string(n) + " degrees of freedom (the initial q); expected one name each");
+        for (const auto& name : t.coordinates) claim("coordinates", name, "coordinate");
+        d.known.q_names = t.coordinates;
+        for (std::size_t k = 0; k < n; ++k) {
+            const std::string name = t.momenta.empty() ? "p" + t.coordinates[k] : t.momenta[k];
+            claim(t.momenta.empty() ? "coordinates" : "momenta", name, "momentum");
+            d.known.p_names.push_back(name);
+        }
+    }
+    d.known.dimension = n;
+    d.q0 = t.q0;
+    d.p0 = t.p0;
+
+    const bool has_H = !t.H.empty(), has_T = !t.T.empty(), has_V = !t.V.empty();
+    if (has_H && (has_T || has_V)) fail("H", "[system] has H and T or V; expected T and V (a separable H) or H alone");
+    if (!has_H && !(has_T && has_V))
+        fail(has_T ? "T" : has_V ? "V" : "name",
+             "[system] has " + std::string(has_T ? "T but no V" : has_V ? "V but no T" : "no T, V or H") +
+                 "; expected T and V, or H");
+    const Eigen::VectorXd q0 = Eigen::Map<const Eigen::VectorXd>(t.q0.data(), Eigen::Index(n)),
+                          p0 = Eigen::Map<const Eigen::VectorXd>(t.p0.data(), Eigen::Index(n));
+    std::string definition = d.name;
+    // One formula: parsed, held to the variables it may use, and finite at
+    // the initial state (which checks every index it reads).
+    const auto read = [&](const std::string& text, const char* key, bool q_allowed,
+                          bool p_allowed) -> std::shared_ptr<const formula> {
+        definition += std::string("\n") + key + "=" + text;
+        try {
+            auto f = std::make_shared<formula>(parse(text, d.known));
+            if (f->uses_q && !q_allowed)
+                throw formula_error(1, std::string(key) + " uses q; expected " +
+                                           (p_allowed ? "T(p) alone (write H = ... for a non-separable system)"
+                                                      : "a formula of the parameters alone"));
+            if (f->uses_p && !p_allowed)
+                throw formula_error(1, std::string(key) + " uses p; expected " +
+                                           (q_allowed ? "V(q) alone (write H = ... for a non-separable system)"
+                                                      : "a formula of the parameters alone"));
+            const double v = evaluate<double>(*f, d.parameter_values, q0, p0);
+            if (!std::isfinite(v))
+                throw formula_input_error(key, 0, std::string(key) + " = " + shortest(v) +
+                                                      " at the initial state; expected a finite value");
+            return f;
+        } catch (const formula_error& e) {
+            throw formula_input_error(key, e.column, e.what());
+        }
+    };
+    if (has_H) {
+        d.H = read(t.H, "H", true, true);
+    } else {
+        d.T = read(t.T, "T", false, true);
+        d.V = read(t.V, "V", true, false);
+    }
+    if (!t.period.empty()) {
+        d.period = read(t.period, "period", false, false);
+        const Eigen::VectorXd none;
+        const double v = evaluate<double>(*d.period, d.parameter_values, none, none);
+        if (!(v > 0)) throw formula_input_error("period", 0, "period = " + shortest(v) + "; expected a value > 0");
+    }
+    for (std::size_t k = 0; k < d.known.parameters.size(); ++k)
+        definition += "\n" + d.known.parameters[k] + "=" + shortest(d.parameter_values[k]);
+    for (const auto& names : {d.known.q_names, d.known.p_names})
+        for (const auto& name : names) definition += "\n" + name;
+    for (double v : t.q0) definition += "\n" + shortest(v);
+    for (double v : t.p0) definition += "\n" + shortest(v);
+    try {
+        return add_scene_system(formula_entry(std::move(d)), definition);
+    } catch (const invalid_argument& e) {
+        throw formula_input_error("name", 0, e.what());
+    }
 }
 
 }  // namespace sympl::app::formulas
