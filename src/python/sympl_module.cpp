@@ -1,0 +1,307 @@
+// The Python module `sympl` (docs/python.md): the program's systems (built-in
+// by name, or written as formulas), its methods by name, a run's results as
+// numpy arrays, and the work-precision report, over the same code as the
+// `sympl` program: a run from Python is the program's run, compiled for the
+// system as the program compiles it. Errors arrive as ValueError (bad input:
+// the program's message) or RuntimeError (anything else); the GIL is released
+// while anything runs.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <sympl/methods/catalog.hpp>
+
+#include "formulas/formula_entry.hpp"
+#include "methods/method_kinds.hpp"
+#include "output/format.hpp"
+#include "reading/near_names.hpp"
+#include "reading/scene.hpp"
+#include "report/report.hpp"
+#include "running/systems.hpp"
+
+namespace py = pybind11;
+
+namespace sympl::app::python {
+
+namespace {
+
+py::array_t<double> array_of(const std::vector<double>& v) {
+    py::array_t<double> a(py::ssize_t(v.size()));
+    std::copy(v.begin(), v.end(), a.mutable_data());
+    return a;
+}
+
+std::vector<double> vector_of(const py::handle& h, const char* what) {
+    const auto a = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(h);
+    if (!a || a.ndim() != 1)
+        throw invalid_argument(std::string(what) + ": expected a one-dimensional sequence of numbers");
+    return std::vector<double>(a.data(), a.data() + a.size());
+}
+
+// Rows of numbers a run wrote as CSV text (its trajectory), as a 2-d array.
+py::array_t<double> rows_of(const std::string& csv, std::size_t columns) {
+    std::vector<double> values;
+    const char* at = csv.c_str();
+    while (*at) {
+        char* end = nullptr;
+        values.push_back(std::strtod(at, &end));
+        at = end;
+        while (*at == ',' || *at == '\n') ++at;
+    }
+    const std::size_t rows = columns ? values.size() / columns : 0;
+    py::array_t<double> a({py::ssize_t(rows), py::ssize_t(columns)});
+    std::copy(values.begin(), values.begin() + std::ptrdiff_t(rows * columns), a.mutable_data());
+    return a;
+}
+
+method_spec method_named(const std::string& name) {
+    std::optional<method_spec> m = resolve_method(name, {});
+    if (m) return *m;
+    std::vector<std::string> names;
+    for (const auto& t : catalog()) names.push_back(t.name());
+    for (const auto& n : method_names_beside_tables()) names.push_back(n);
+    const std::string hint = did_you_mean_method(name, {});
+    throw invalid_argument("unknown method '" + name + "'; " + (hint.empty() ? did_you_mean(name, names) : hint) +
+                           "expected a catalog name (sympl.tables()), logh(<table>), extrapolated(<table>, k), "
+                           "compensated(<table>), tao(<table>), semiexplicit(<table>), or another of sympl.methods()");
+}
+
+// A system as Python holds it: the program's runnable system and its name.
+class system {
+public:
+    system(const std::string& name, const std::map<std::string, double>& parameters, const py::object& q0,
+           const py::object& p0) {
+        std::vector<double> q, p;
+        if (!q0.is_none()) q = vector_of(q0, "q0");
+        if (!p0.is_none()) p = vector_of(p0, "p0");
+        if (q.empty() != p.empty()) throw invalid_argument("give both q0 and p0, or neither (the system's default)");
+        sys_ = make_system(name, parameters, q, p, "python");
+        name_ = name;
+    }
+
+    const std::string& name() const { return name_; }
+    std::size_t degrees_of_freedom() const { return sys_.degrees_of_freedom; }
+    py::array_t<double> x0() const { return array_of(sys_.x0); }
+    double energy(const py::object& x) const {
+        const std::vector<double> v = vector_of(x, "x");
+        if (v.size() != sys_.x0.size())
+            throw invalid_argument("x has " + std::to_string(v.size()) + " numbers; expected q then p, " +
+                                   std::to_string(sys_.x0.size()));
+        if (!sys_.energy) throw invalid_argument(name_ + " has no energy (it is not a Hamiltonian system)");
+        return sys_.energy(v);
+    }
+
+    py::dict run(const std::string& method, double t_end, double dt, double t0, double tolerance, const py::object& x0,
+                 bool energy, std::size_t energy_every, std::size_t trajectory_every, bool timing) const {
+        const method_spec m = method_named(method);
+        std::vector<double> x = x0.is_none() ? sys_.x0 : vector_of(x0, "x0");
+        if (x.size() != sys_.x0.size())
+            throw invalid_argument("x0 has " + std::to_string(x.size()) + " numbers; expected q then p, " +
+                                   std::to_string(sys_.x0.size()));
+        if (!(std::isfinite(t0) && std::isfinite(t_end) && t_end > t0))
+            throw invalid_argument("t_end = " + shortest(t_end) + " after t0 = " + shortest(t0) +
+                                   "; expected finite times, t_end > t0");
+        const bool adaptive_kind = adaptive(m);
+        if (!adaptive_kind && !(dt > 0 && std::isfinite(dt)))
+            throw invalid_argument("dt = " + shortest(dt) + "; expected a finite step > 0 for " + method);
+        if (!adaptive_kind && (t_end - t0) / dt > default_max_steps)
+            throw invalid_argument("a run of " + shortest((t_end - t0) / dt) + " steps; expected at most " +
+                                   shortest(default_max_steps) + " (a larger dt or a shorter span)");
+        if (adaptive_kind && !(tolerance > 0 && tolerance < 1))
+            throw invalid_argument("tolerance = " + shortest(tolerance) + "; expected a value in (0, 1)");
+        run_request rq;
+        rq.dt = dt;
+        rq.tolerance = tolerance;
+        rq.energy = energy && sys_.energy;
+        rq.energy_series_every = energy_every;
+        rq.trajectory_every = trajectory_every;
+        rq.timing_repeats = timing ? 3 : 0;
+        std::ostringstream trajectory;
+        trajectory.precision(17);
+        if (trajectory_every) rq.trajectory = &trajectory;
+        run_result r;
+        {
+            py::gil_scoped_release released;
+            r = sys_.run(m, rq, t0, t_end, x);
+        }
+        py::dict out;
+        out["method"] = method;
+        out["stable"] = r.stable;
+        out["failure"] = r.failure;
+        out["steps"] = r.steps;
+        out["force_evaluations"] = r.force_evaluations;
+        out["final_state"] = array_of(r.final_state);
+        out["max_energy_error"] = r.max_energy_error;
+        out["seconds"] = r.seconds;
+        out["generic_path"] = r.generic;
+        std::vector<double> series;
+        for (const auto& [t, e] : r.energy_series) series.insert(series.end(), {t, e});
+        py::array_t<double> s({py::ssize_t(r.energy_series.size()), py::ssize_t(2)});
+        std::copy(series.begin(), series.end(), s.mutable_data());
+        out["energy_series"] = s;
+        out["trajectory"] = rows_of(trajectory.str(), 1 + sys_.x0.size());
+        return out;
+    }
+
+private:
+    runnable_system sys_;
+    std::string name_;
+};
+
+system from_formulas(const std::string& T, const std::string& V, const std::string& H, const py::object& q0,
+                     const py::object& p0, const std::map<std::string, double>& parameters,
+                     const std::vector<std::string>& coordinates, const std::vector<std::string>& momenta,
+                     const std::string& period, const std::string& name) {
+    formulas::formula_texts t;
+    t.name = name, t.T = T, t.V = V, t.H = H, t.period = period;
+    t.parameters.assign(parameters.begin(), parameters.end());
+    t.coordinates = coordinates, t.momenta = momenta;
+    t.q0 = vector_of(q0, "q0");
+    t.p0 = vector_of(p0, "p0");
+    try {
+        formulas::define_formula_system(t);
+    } catch (const formulas::formula_input_error& e) {
+        throw invalid_argument(e.key + (e.column ? ", column " + std::to_string(e.column) : std::string()) + ": " +
+                               e.what());
+    }
+    return system(name, {}, py::none(), py::none());
+}
+
+py::list systems_list() {
+    py::list out;
+    for (const auto& e : systems()) {
+        py::dict d;
+        d["name"] = e.name;
+        d["description"] = e.description;
+        py::dict parameters;
+        for (const auto& p : e.parameters) parameters[py::str(p.name)] = p.value;
+        d["parameters"] = parameters;
+        d["period"] = e.period.meaning;
+        out.append(d);
+    }
+    return out;
+}
+
+// The report over scene files (none: the built-in set), written to `out` as
+// the program writes it; its work-precision rows returned as columns.
+py::dict report(const std::vector<std::string>& scenes, const std::string& out, bool quick, bool plots, int threads) {
+    report_options o;
+    o.out_dir = out;
+    o.quick = quick;
+    o.plots = plots;
+    o.threads = threads;
+    std::ostringstream printed;
+    {
+        py::gil_scoped_release released;
+        std::vector<scene> s;
+        for (const auto& f : scenes) s.push_back(load_scene(f, quick));
+        o.studies = scenes.empty();
+        if (s.empty()) s = default_scenes(quick);
+        run_report(s, o, printed);
+    }
+    // work_precision.csv, column by column: numbers as float arrays, the rest as lists of strings.
+    std::ifstream in(out + "/work_precision.csv");
+    std::string line;
+    std::getline(in, line);
+    std::vector<std::string> header;
+    {
+        std::stringstream h(line);
+        for (std::string c; std::getline(h, c, ',');) header.push_back(c);
+    }
+    std::vector<std::vector<std::string>> cells(header.size());
+    while (std::getline(in, line)) {
+        std::vector<std::string> fields;
+        std::string field;
+        bool quoted = false;
+        for (char c : line) {
+            if (c == '"') quoted = !quoted;
+            else if (c == ',' && !quoted) fields.push_back(std::move(field)), field.clear();
+            else field += c;
+        }
+        fields.push_back(field);
+        for (std::size_t k = 0; k < header.size(); ++k) cells[k].push_back(k < fields.size() ? fields[k] : "");
+    }
+    py::dict columns;
+    for (std::size_t k = 0; k < header.size(); ++k) {
+        std::vector<double> numbers;
+        bool numeric = true;
+        for (const auto& c : cells[k]) {
+            char* end = nullptr;
+            const double v = std::strtod(c.c_str(), &end);
+            if (c.empty() || *end) {
+                numeric = false;
+                break;
+            }
+            numbers.push_back(v);
+        }
+        if (numeric) columns[py::str(header[k])] = array_of(numbers);
+        else columns[py::str(header[k])] = cells[k];
+    }
+    py::dict result;
+    result["work_precision"] = columns;
+    result["summary"] = printed.str();
+    result["directory"] = out;
+    return result;
+}
+
+}  // namespace
+
+}  // namespace sympl::app::python
+
+PYBIND11_MODULE(sympl, m) {
+    using namespace sympl::app::python;
+    namespace app = sympl::app;
+    m.doc() = "sympl: symplectic integration of Hamiltonian systems (docs/python.md)";
+    // The library's errors as Python's: bad input is a ValueError with the
+    // program's message, a failed run a RuntimeError.
+    py::register_exception_translator([](std::exception_ptr p) {
+        try {
+            if (p) std::rethrow_exception(p);
+        } catch (const sympl::invalid_argument& e) {
+            PyErr_SetString(PyExc_ValueError, e.what());
+        } catch (const sympl::invalid_table& e) {
+            PyErr_SetString(PyExc_ValueError, e.what());
+        } catch (const app::scene_error& e) {
+            PyErr_SetString(PyExc_ValueError, e.what());
+        }
+    });
+    m.def("systems", &systems_list, "The built-in systems: name, description, parameters with defaults, period");
+    m.def(
+        "tables", [] {
+            std::vector<std::string> names;
+            for (const auto& t : sympl::catalog()) names.push_back(t.name());
+            return names;
+        },
+        "The catalog's splitting tables by name");
+    m.def("methods", &app::method_names_beside_tables, "Method names beside the tables (rk4, dprkn8, odeint_dopri5, ...)");
+    py::class_<sympl::app::python::system>(m, "System", "A system the program runs: built-in by name, or from formulas")
+        .def(py::init<const std::string&, const std::map<std::string, double>&, const py::object&, const py::object&>(),
+             py::arg("name"), py::arg("parameters") = std::map<std::string, double>{}, py::arg("q0") = py::none(),
+             py::arg("p0") = py::none())
+        .def_static("from_formulas", &from_formulas, py::arg("T") = "", py::arg("V") = "", py::arg("H") = "",
+                    py::arg("q0"), py::arg("p0"), py::arg("parameters") = std::map<std::string, double>{},
+                    py::arg("coordinates") = std::vector<std::string>{},
+                    py::arg("momenta") = std::vector<std::string>{}, py::arg("period") = "",
+                    py::arg("name") = "formulas",
+                    "A system of formulas, as a scene's [system] table (docs/formulas.md)")
+        .def_property_readonly("name", &sympl::app::python::system::name)
+        .def_property_readonly("degrees_of_freedom", &sympl::app::python::system::degrees_of_freedom)
+        .def_property_readonly("x0", &sympl::app::python::system::x0, "The initial state, q then p")
+        .def("energy", &sympl::app::python::system::energy, py::arg("x"))
+        .def("run", &sympl::app::python::system::run, py::arg("method"), py::arg("t_end"), py::arg("dt") = 0.0,
+             py::arg("t0") = 0.0, py::arg("tolerance") = 1e-8, py::arg("x0") = py::none(), py::arg("energy") = true,
+             py::arg("energy_every") = 0, py::arg("trajectory_every") = 0, py::arg("timing") = false,
+             "One run of a method by name: a dict of steps, force_evaluations, final_state, max_energy_error, "
+             "energy_series (t, error rows), trajectory (t, q, p rows), seconds (timing=True), generic_path");
+    m.def("report", &report, py::arg("scenes") = std::vector<std::string>{}, py::arg("out") = "sympl-report",
+          py::arg("quick") = true, py::arg("plots") = false, py::arg("threads") = 0,
+          "The work-precision report over scene files (none: the built-in set), written to `out` as `sympl report` "
+          "writes it; returns its work_precision.csv as columns");
+}

@@ -1,0 +1,92 @@
+"""The Python module `sympl` (src/python/sympl_module.cpp): the program's systems,
+methods and report from Python, each result against what theory or the C++ side gives."""
+import math
+
+import numpy as np
+import pytest
+
+import sympl
+
+HH_P1 = 0.5692099788303082  # Henon-Heiles at E = 1/6 from q = (0, 0.1), p2 = 0
+
+
+def test_lists_name_the_built_in_systems_and_methods():
+    names = [s["name"] for s in sympl.systems()]
+    assert "henon_heiles" in names and "kepler" in names
+    kepler = next(s for s in sympl.systems() if s["name"] == "kepler")
+    assert kepler["parameters"]["eccentricity"] == 0.5
+    assert "blanes_moan_s6" in sympl.tables()
+    assert "dprkn8" in sympl.methods()
+
+
+def test_a_run_returns_numpy_arrays_and_keeps_the_energy_to_the_method_order():
+    hh = sympl.System("henon_heiles")
+    assert hh.degrees_of_freedom == 2
+    assert isinstance(hh.x0, np.ndarray) and hh.x0.shape == (4,)
+    # A fourth-order table: halving dt divides the energy error by about 2^4.
+    errors = [hh.run("forest_ruth_4", t_end=200.0, dt=dt)["max_energy_error"] for dt in (0.1, 0.05)]
+    assert abs(math.log2(errors[0] / errors[1]) - 4) < 0.5
+    r = hh.run("leapfrog_kdk", t_end=10.0, dt=0.1, energy_every=10, trajectory_every=5)
+    assert r["steps"] == 100 and r["stable"]
+    assert r["final_state"].shape == (4,)
+    assert r["trajectory"].shape == (21, 5)  # t, q1, q2, p1, p2 every 5 steps from t = 0
+    assert r["trajectory"][-1, 0] == pytest.approx(10.0)
+    np.testing.assert_array_equal(r["trajectory"][-1, 1:], r["final_state"])
+    assert r["energy_series"].shape[1] == 2
+    assert r["energy_series"][:, 1].max() <= r["max_energy_error"]
+
+
+def test_a_formula_system_runs_as_the_built_in_one():
+    mine = sympl.System.from_formulas(T="(px^2 + py^2) / 2", V="(x^2 + y^2) / 2 + x^2*y - y^3/3",
+                                      coordinates=["x", "y"], q0=[0, 0.1], p0=[HH_P1, 0],
+                                      name="python_henon_heiles")
+    builtin = sympl.System("henon_heiles")
+    for method in ("blanes_moan_s6", "dprkn8"):
+        a = mine.run(method, t_end=50.0, dt=0.05)
+        b = builtin.run(method, t_end=50.0, dt=0.05)
+        assert a["generic_path"] and not b["generic_path"]
+        assert a["steps"] == b["steps"]
+        # The same steps on forces equal to rounding.
+        assert np.max(np.abs(a["final_state"] - b["final_state"])) < 1e-11
+    assert mine.energy(mine.x0) == pytest.approx(1 / 6, rel=1e-15)
+
+
+def test_errors_are_value_errors_with_the_programs_messages():
+    with pytest.raises(ValueError, match="unknown system 'henon_heils'; did you mean 'henon_heiles'"):
+        sympl.System("henon_heils")
+    with pytest.raises(ValueError, match="unknown method 'blanes_moan_s7'"):
+        sympl.System("pendulum").run("blanes_moan_s7", t_end=1.0, dt=0.1)
+    with pytest.raises(ValueError, match="dt = 0; expected a finite step > 0 for leapfrog_kdk"):
+        sympl.System("pendulum").run("leapfrog_kdk", t_end=1.0)
+    with pytest.raises(ValueError, match="a run of 1e.15 steps; expected at most 1e.09"):
+        sympl.System("pendulum").run("leapfrog_kdk", t_end=1e12, dt=1e-3)
+    with pytest.raises(ValueError, match="V, column 6: unknown name 'z'"):
+        sympl.System.from_formulas(T="p[0]^2/2", V="q[0]*z", q0=[1.0], p0=[0.0], name="bad_formula")
+    with pytest.raises(ValueError, match="needs a separable Hamiltonian"):
+        sympl.System("double_pendulum").run("leapfrog_kdk", t_end=1.0, dt=0.1)
+    with pytest.raises(ValueError, match="expected a one-dimensional sequence"):
+        sympl.System("pendulum").energy([[1.0, 2.0]])
+    with pytest.raises(TypeError):
+        sympl.System(3)
+
+
+def test_the_report_returns_its_work_precision_columns(tmp_path):
+    scene = tmp_path / "pendulum.toml"
+    scene.write_text('system = "pendulum"\nmethods = ["leapfrog_kdk", "forest_ruth_4"]\n'
+                     'dt = [0.2, 0.1]\nt_end = 20\n')
+    result = sympl.report([str(scene)], out=str(tmp_path / "report"), quick=True)
+    wp = result["work_precision"]
+    assert (tmp_path / "report" / "work_precision.csv").exists()
+    assert set(wp["method"]) == {"leapfrog_kdk", "forest_ruth_4"}
+    assert isinstance(wp["dt"], np.ndarray) and len(wp["dt"]) == 4
+
+
+def test_the_walk_through_of_docs_python_md_runs_as_written(tmp_path, monkeypatch):
+    import pathlib
+    import re
+    page = pathlib.Path(__file__).resolve().parents[2] / "docs" / "python.md"
+    blocks = re.findall(r"```python\n(.*?)```", page.read_text(), re.S)
+    assert blocks
+    monkeypatch.chdir(tmp_path)
+    for block in blocks:
+        exec(compile(block, str(page), "exec"), {})
