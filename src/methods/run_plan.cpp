@@ -27,6 +27,7 @@ const std::vector<double>& sweep_of(const scene& s, const scene_method& m) {
 
 run_plan plan_runs(const scene& s, const runnable_system& p, sweep_use use) {
     run_plan plan{.s = &s, .use = use};
+    plan.degrees_of_freedom = p.degrees_of_freedom;
     const double span = s.t_end - s.t0;
     double finest = HUGE_VAL;
     for (const scene_method& m : s.methods) {
@@ -62,11 +63,36 @@ void check_run_size(const run_plan& plan, double max_steps) {
                           shortest(s.t_end) + " takes " + format_number(steps, 3) + " steps; the limit is " +
                           format_number(max_steps, 3) + " (raise it with --max-steps)");
     };
-    for (const planned_run& r : plan.runs)
+    for (const planned_run& r : plan.runs) {
         if (!(r.steps <= max_steps)) refuse("method '" + r.method->name + "'", r.dt, r.steps);
+        const memory_estimate m = run_memory(*r.method, plan.degrees_of_freedom, r.steps, s.output.energy_every);
+        if (!(m.bytes <= memory_budget_bytes))
+            throw scene_error(s.source + ": method '" + r.method->name + "' would hold " +
+                              format_number(m.bytes / double(1 << 30), 3) + " GiB (" + m.what + "); the limit is " +
+                              format_number(memory_budget_bytes / double(1 << 30), 3) +
+                              " GiB a run (docs/reliability.md, \"Memory\")");
+    }
     if (plan.reference_dt > 0 && !(plan.reference_steps <= max_steps))
         refuse("the reference (its dt is a quarter of the finest step, " + shortest(plan.finest_dt) + ")",
                plan.reference_dt, plan.reference_steps);
+}
+
+memory_estimate run_memory(const method_spec& m, std::size_t degrees_of_freedom, double steps,
+                           std::size_t energy_every, double real_bytes) {
+    memory_estimate e;
+    if (m.kind == method_kind::gauss) {
+        const double n2 = 2.0 * double(degrees_of_freedom), s = m.parameters.stages;
+        e.bytes += (n2 * n2 + n2 * s * n2 * s) * real_bytes;
+        e.what = "Gauss-Legendre's Jacobian and Newton matrix for " + std::to_string(degrees_of_freedom) +
+                 " degrees of freedom and " + std::to_string(m.parameters.stages) + " stages";
+    }
+    if (energy_every > 0 && steps > 0) {
+        e.bytes += (steps / double(energy_every) + 1) * 2 * 16;  // a (t, error) pair, the vector's growth
+        e.what += std::string(e.what.empty() ? "" : ", and ") + "an energy series of " +
+                  format_number(steps / double(energy_every) + 1, 3) + " rows (output.energy_every = " +
+                  std::to_string(energy_every) + ")";
+    }
+    return e;
 }
 
 runnable_system system_of(const scene& s) {

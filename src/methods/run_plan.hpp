@@ -4,6 +4,8 @@
 // The size check, the reference, `sympl run` and `sympl report` all read the
 // plan; none works the sweeps out again.
 #include <cstddef>
+#include <cstdint>
+#include <string>
 #include <vector>
 
 #include "running/runnable_system.hpp"
@@ -33,6 +35,7 @@ struct run_plan {
     double finest_dt = 0;           // the smallest physical step of the runs (the scene's dt if none has one)
     double reference_dt = 0;        // a quarter of finest_dt; 0 when the system is exact
     double reference_steps = 0;     // of the reference's two runs (reference.hpp), together
+    std::size_t degrees_of_freedom = 0;
     std::size_t sweep_length(const scene_method& m) const;  // how many of its values run
 };
 
@@ -41,10 +44,27 @@ const std::vector<double>& sweep_of(const scene& s, const scene_method& m);
 
 run_plan plan_runs(const scene& s, const runnable_system& p, sweep_use use);
 
+// What one run may hold where the scene sets the size (docs/reliability.md,
+// "Memory"): Gauss-Legendre's Newton matrices, the energy series `sympl run`
+// keeps until it writes it.
+inline constexpr double memory_budget_bytes = double(std::uint64_t(4) << 30);
+
+// The bytes a run of m holds that its scene sizes: for Gauss-Legendre the
+// Jacobian (2n)^2 and the Newton matrix (2ns)^2 of `real_bytes` numbers; for
+// an energy series every k steps, a (t, error) pair per row. A reason beside
+// the figure says what they are.
+struct memory_estimate {
+    double bytes = 0;
+    std::string what;
+};
+memory_estimate run_memory(const method_spec& m, std::size_t degrees_of_freedom, double steps,
+                           std::size_t energy_every, double real_bytes = 8);
+
 // Refuses, with the figures, a plan whose runs would take more than
 // max_steps steps each: every fixed-step method at every step size it will
 // use, an extrapolated method counting its inner steps, and the reference
 // run. LogH and adaptive methods choose their own steps and are not counted.
+// And a run that would hold more than memory_budget_bytes (run_memory).
 void check_run_size(const run_plan& plan, double max_steps);
 
 // The scene's system made runnable, every method checked against it: a method

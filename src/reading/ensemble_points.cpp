@@ -117,6 +117,21 @@ ensemble_setup set_up_ensemble(const scene& s, double max_steps) {
                                " steps; the limit is " + format_number(max_steps, 6) + " (raise it with --max-steps)");
     if (e.grid.empty()) u.states = read_states(e.states_file, state_columns(u.base.system, u.base.degrees_of_freedom));
     u.trajectories = e.grid.empty() ? u.states.size() : e.size();
+    // What the ensemble holds until it writes (docs/reliability.md, "Memory"):
+    // per trajectory its point (start, parameters, grid values), its row
+    // (final state), and ensemble.csv's line twice (a block's text, then all
+    // blocks'): about 25 characters a number.
+    const double n = double(u.base.degrees_of_freedom), axes = double(e.grid.size());
+    const double per_trajectory = 640 + 96 * double(u.entry->parameters.size()) + 2 * 2 * n * 8 +
+                                  2 * 25 * (4 * n + axes + 8);
+    const double held = double(u.trajectories) * per_trajectory;
+    if (!(held <= memory_budget_bytes))
+        throw invalid_argument(s.source + ": " + std::to_string(u.trajectories) + " trajectories of " +
+                               format_number(n, 6) + " degrees of freedom would hold " +
+                               format_number(held / double(1 << 30), 3) + " GiB (about " +
+                               format_number(per_trajectory, 3) + " bytes each: start, row and ensemble.csv's line); "
+                               "the limit is " + format_number(memory_budget_bytes / double(1 << 30), 3) +
+                               " GiB (docs/reliability.md, \"Memory\"); expected fewer points");
     const double total = double(u.trajectories) * span_steps;
     if (total > 1e4 * max_steps)
         throw invalid_argument(s.source + ": " + std::to_string(u.trajectories) + " trajectories of " +

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "methods/run_plan.hpp"
+#include "reading/ensemble_points.hpp"
 #include "reading/scene.hpp"
 
 namespace test_program_test_scene {  // one per file: the tests build in batches (CMakeLists.txt)
@@ -405,3 +406,40 @@ TEST_CASE("scene: a geometric sweep holds the decimals it meant, and one past a 
 }
 
 }  // namespace test_program_test_scene
+
+namespace test_program_test_scene_memory {
+
+using namespace sympl::app;
+
+TEST_CASE("scene: a run that would hold more than the memory budget is refused before it allocates") {
+    // gauss_6 on 20000 masses: (4e4)^2 + (1.2e5)^2 doubles, 119 GiB of Newton matrices.
+    const scene chain = parse_scene("system = \"fpu_beta\"\nparameters = {n = 20000}\nmethods = [\"gauss_6\"]\n"
+                                    "dt = 0.1\nt_end = 1\n",
+                                    "chain.toml");
+    CHECK_THROWS_WITH_AS(check_run_size(plan_runs(chain, system_of(chain), sweep_use::first), 1e9),
+                         "chain.toml: method 'gauss_6' would hold 119 GiB (Gauss-Legendre's Jacobian and Newton matrix "
+                         "for 20000 degrees of freedom and 3 stages); the limit is 4 GiB a run (docs/reliability.md, "
+                         "\"Memory\")",
+                         scene_error);
+    // An energy series of every step over 4e8 steps: 12 GiB.
+    const scene series = parse_scene("system = \"pendulum\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.01\nt_end = 4e6\n"
+                                     "[output]\nenergy_every = 1\n",
+                                     "series.toml");
+    CHECK_THROWS_WITH_AS(check_run_size(plan_runs(series, system_of(series), sweep_use::first), 1e9),
+                         doctest::Contains("an energy series of 4e+08 rows (output.energy_every = 1)"), scene_error);
+    // Every 100 steps it fits (the harmonic oscillator's exact solution needs no reference run).
+    const scene sparse = parse_scene("system = \"harmonic_oscillator\"\nmethods = [\"leapfrog_kdk\", \"gauss_6\"]\n"
+                                     "dt = 0.01\nt_end = 4e6\n[output]\nenergy_every = 100\n",
+                                     "sparse.toml");
+    CHECK_NOTHROW(check_run_size(plan_runs(sparse, system_of(sparse), sweep_use::first), 1e9));
+    // An ensemble grid inside the 1e7-point limit that would hold more than the budget.
+    const scene grid = parse_scene("system = \"henon_heiles\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.1\nt_end = 1\n"
+                                   "[ensemble]\ngrid = {q2 = {from = -0.3, to = 0.3, count = 3000}, "
+                                   "p2 = {from = -0.3, to = 0.3, count = 3000}}\n",
+                                   "grid.toml");
+    CHECK_THROWS_WITH_AS(set_up_ensemble(grid, 1e9), doctest::Contains("grid.toml: 9000000 trajectories of 2 degrees "
+                                                                       "of freedom would hold"),
+                         sympl::invalid_argument);
+}
+
+}  // namespace test_program_test_scene_memory
