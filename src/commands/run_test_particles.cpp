@@ -37,7 +37,6 @@ namespace sympl::app {
 namespace {
 
 constexpr double degree = std::numbers::pi / 180;
-constexpr std::size_t max_elements_bytes = std::size_t(64) << 20;
 const std::vector<std::string> element_columns{"a", "e", "inclination", "node", "pericentre", "mean_anomaly"};
 
 // elements = "file.csv": a header naming the columns, a and e first, then

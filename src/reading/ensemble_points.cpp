@@ -16,8 +16,6 @@ namespace sympl::app {
 
 namespace {
 
-constexpr std::size_t max_states_bytes = std::size_t(256) << 20;
-
 // Points with equal keys share one Hamiltonian (their parameters of H agree).
 std::string key_of(const system_entry& entry, const parameter_values& v) {
     std::string key;

@@ -377,7 +377,17 @@ scene load_scene(const std::string& path, bool quick) {
     if (text.find('\0') != std::string::npos)
         throw scene_error(path + ":" + std::to_string(1 + std::count(text.begin(), text.begin() + std::ptrdiff_t(text.find('\0')), '\n')) +
                           ": a NUL byte; expected a text file (TOML)");
-    return parse_scene(text, path, quick);
+    scene s = parse_scene(text, path, quick);
+    // A file the scene reads joins its identity (a file that cannot be read
+    // is refused where it is read, with the reason).
+    const auto cover = [&s](const std::string& file, std::size_t limit, const char* what) {
+        const file_text input = read_file_text(file, limit);
+        if (input.failure.empty()) s.text_hash = fnv1a_hex(s.text_hash + "\n" + what + " " + fnv1a_hex(input.text));
+    };
+    if (s.ensemble && !s.ensemble->states_file.empty()) cover(s.ensemble->states_file, max_states_bytes, "states");
+    if (s.test_particles && !s.test_particles->elements_file.empty())
+        cover(s.test_particles->elements_file, max_elements_bytes, "elements");
+    return s;
 }
 
 std::vector<scene> default_scenes(bool quick) {

@@ -98,7 +98,10 @@ inline constexpr double max_test_particles = 1e6;
 
 struct scene {
     std::string source;  // file path, or "built-in"
-    std::string text_hash;  // of the scene file's text: what a checkpoint belongs to
+    // Of the scene file's text and of the files it reads (load_scene): what a
+    // checkpoint belongs to, so that a resume notices an edited states or
+    // elements file.
+    std::string text_hash;
     std::string name;
     std::string system;
     std::map<std::string, double> parameters;
@@ -120,8 +123,11 @@ struct scene_error : error {
     using error::error;
 };
 
-// A scene file is small text: larger ones are refused before they are read.
+// A scene file is small text: larger ones are refused before they are read;
+// so are the files a scene names, each kind at its own limit.
 inline constexpr std::size_t max_scene_bytes = 1 << 20;
+inline constexpr std::size_t max_states_bytes = std::size_t(256) << 20;   // [ensemble] states
+inline constexpr std::size_t max_elements_bytes = std::size_t(64) << 20;  // [test_particles] elements
 
 // `quick`: apply the scene's [quick] table (shorter t_end, fewer steps), if it has one.
 scene parse_scene(const std::string& text, const std::string& source, bool quick = false);

@@ -443,3 +443,28 @@ TEST_CASE("scene: a run that would hold more than the memory budget is refused b
 }
 
 }  // namespace test_program_test_scene_memory
+
+namespace test_program_test_scene_inputs {
+
+using namespace sympl::app;
+
+TEST_CASE("scene: the identity a checkpoint belongs to covers the states file the scene reads") {
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("sympl_inputs_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    {
+        std::ofstream(dir / "e.toml") << "system = \"henon_heiles\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.1\nt_end = 1\n"
+                                         "[ensemble]\nstates = \"starts.csv\"\n";
+        std::ofstream(dir / "starts.csv") << "q1,q2,p1,p2\n0,0.1,0.3,0\n";
+    }
+    const std::string before = load_scene((dir / "e.toml").string()).text_hash;
+    CHECK(before == load_scene((dir / "e.toml").string()).text_hash);  // the same files, the same identity
+    std::ofstream(dir / "starts.csv") << "q1,q2,p1,p2\n0,0.1,0.3,0.01\n";  // one number edited after a kill
+    CHECK(load_scene((dir / "e.toml").string()).text_hash != before);
+    // The scene's text alone, as before, where it reads no file.
+    const std::string text = "system = \"pendulum\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.1\nt_end = 1\n";
+    std::ofstream(dir / "p.toml") << text;
+    CHECK(load_scene((dir / "p.toml").string()).text_hash == fnv1a_hex(text));
+    std::filesystem::remove_all(dir);
+}
+
+}  // namespace test_program_test_scene_inputs
