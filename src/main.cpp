@@ -48,6 +48,7 @@ struct command_line {
     double max_steps = default_max_steps;
     bool resume = false;
     std::vector<std::string> report_files;
+    std::vector<std::string> system_scenes;
     report_options report_settings;
     std::string ensemble_out = "sympl-ensemble";
     std::string run_out = "sympl-test-particles";
@@ -64,6 +65,7 @@ void add_listings(CLI::App& app, command_line& c) {
     c.tables->add_flag("--json", c.json, "JSON output");
     c.systems = app.add_subcommand("systems", "List every system, its parameters and the method kinds");
     c.systems->add_flag("--json", c.json, "JSON output");
+    c.systems->add_option("scenes", c.system_scenes, "scene files: list their systems (a [system] of formulas too)");
     c.check = app.add_subcommand("check-table", "Validate a table and measure its order and stability");
     c.check->add_option("--kick", c.kick, "kick coefficients, comma-separated")->required();
     c.check->add_option("--drift", c.drift, "drift coefficients, comma-separated")->required();
@@ -127,7 +129,7 @@ void run_one(const command_line& c, const exchange& ranks) {
 // The chosen command; its exit code.
 int dispatch(command_line& c, exchange& ranks) {
     if (*c.tables) print_tables(c.json);
-    if (*c.systems) print_systems(c.json);
+    if (*c.systems) print_systems(c.json, c.system_scenes);
     if (*c.check) return check_table(c.kick, c.drift, c.convention, c.json);
     if (*c.ensemble || *c.report || *c.run) ranks = process_exchange();
     if (*c.ensemble)

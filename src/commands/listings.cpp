@@ -1,6 +1,7 @@
 // `sympl tables` and `sympl systems`.
 #include "commands/listings.hpp"
 
+#include <algorithm>
 #include <iomanip>
 #include <iostream>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "reading/coefficient_list.hpp"
 #include "output/format.hpp"
 #include "methods/method_kinds.hpp"
+#include "reading/scene.hpp"
 #include "running/systems.hpp"
 
 namespace sympl::app {
@@ -40,10 +42,22 @@ std::vector<std::string> compiled_names(const system_entry& s) {
 }  // namespace
 
 // The registries: systems (with parameters) and method kinds.
-void print_systems(bool json) {
+void print_systems(bool json, const std::vector<std::string>& scene_files) {
+    // The program's systems, or the systems of the scenes given (their own,
+    // written as formulas, among them).
+    std::vector<const system_entry*> listed;
+    for (const auto& s : systems()) listed.push_back(&s);
+    if (!scene_files.empty()) {
+        listed.clear();
+        for (const auto& f : scene_files) {
+            const system_entry* e = find_system(load_scene(f).system);
+            if (e && std::find(listed.begin(), listed.end(), e) == listed.end()) listed.push_back(e);
+        }
+    }
     if (json) {
         nlohmann::json out = nlohmann::json::array();
-        for (const auto& s : systems()) {
+        for (const system_entry* listed_entry : listed) {
+            const system_entry& s = *listed_entry;
             nlohmann::json params = nlohmann::json::array();
             for (const auto& p : s.parameters)
                 params.push_back({{"name", p.name}, {"default", p.value}, {"expected", p.expected()}, {"meaning", p.meaning}});
@@ -57,7 +71,8 @@ void print_systems(bool json) {
         std::cout << out.dump(2) << "\n";
         return;
     }
-    for (const auto& s : systems()) {
+    for (const system_entry* entry : listed) {
+        const system_entry& s = *entry;
         std::cout << s.name << (s.exact ? "  (exact solution)" : "") << "\n    " << s.description << "\n";
         if (s.period.value) {  // what a scene's {periods = N} and {per_period = N} count in
             std::cout << "    period " << format_number(period_of(s, with_defaults(s, {}, s.name)), 6) << " at the defaults: "
