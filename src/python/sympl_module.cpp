@@ -11,12 +11,16 @@
 
 #include <cmath>
 #include <fstream>
+#include <iostream>
 #include <map>
+#include <mutex>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include <sympl/methods/catalog.hpp>
+
+#include "commands/check_table.hpp"
 
 #include "formulas/formula_entry.hpp"
 #include "methods/method_kinds.hpp"
@@ -61,13 +65,38 @@ py::array_t<double> rows_of(const std::string& csv, std::size_t columns) {
     return a;
 }
 
+// The tables Python made (sympl.Table), by name, for method names to use
+// (as a scene's [[table]]s): one per name in a process.
+std::mutex tables_mutex;
+std::map<std::string, table>& python_tables() {
+    static std::map<std::string, table> tables;
+    return tables;
+}
+
+void add_python_table(const table& t) {
+    std::lock_guard lock(tables_mutex);
+    auto& tables = python_tables();
+    if (const auto found = tables.find(t.name()); found != tables.end()) {
+        if (found->second.kick() == t.kick() && found->second.drift() == t.drift()) return;
+        throw invalid_argument("a second table named '" + t.name() + "' with other coefficients; expected each name once");
+    }
+    if (resolve_method(t.name(), {})) throw invalid_argument("table name '" + t.name() + "' is already a method; expected a new name");
+    tables.emplace(t.name(), t);
+}
+
 method_spec method_named(const std::string& name) {
-    std::optional<method_spec> m = resolve_method(name, {});
+    std::map<std::string, table> tables;
+    {
+        std::lock_guard lock(tables_mutex);
+        tables = python_tables();
+    }
+    std::optional<method_spec> m = resolve_method(name, tables);
     if (m) return *m;
     std::vector<std::string> names;
     for (const auto& t : catalog()) names.push_back(t.name());
     for (const auto& n : method_names_beside_tables()) names.push_back(n);
-    const std::string hint = did_you_mean_method(name, {});
+    for (const auto& [n, t] : tables) names.push_back(n);
+    const std::string hint = did_you_mean_method(name, tables);
     throw invalid_argument("unknown method '" + name + "'; " + (hint.empty() ? did_you_mean(name, names) : hint) +
                            "expected a catalog name (sympl.tables()), logh(<table>), extrapolated(<table>, k), "
                            "compensated(<table>), tao(<table>), semiexplicit(<table>), or another of sympl.methods()");
@@ -150,10 +179,111 @@ public:
         return out;
     }
 
+    // Many starts (rows of q then p) by one table over [t0, t_end] in steps
+    // of dt, on threads: the program's ensemble runner (ensembles.md).
+    py::dict ensemble(const py::array_t<double, py::array::c_style | py::array::forcecast>& starts,
+                      const std::string& method, double t_end, double dt, double t0, std::size_t sample_every,
+                      bool megno, int threads) const {
+        if (!sys_.ensemble)
+            throw invalid_argument(name_ + " is not a separable Hamiltonian H = T(p) + V(q); an ensemble runs splitting "
+                                           "tables on one");
+        const method_spec m = method_named(method);
+        if (m.kind != method_kind::table || !m.coefficients || m.extrapolation_columns || m.compensated)
+            throw invalid_argument("ensemble method '" + method + "'; expected a plain splitting table");
+        const std::size_t width = sys_.x0.size();
+        if (starts.ndim() != 2 || std::size_t(starts.shape(1)) != width)
+            throw invalid_argument("starts: expected rows of " + std::to_string(width) + " numbers (q then p)");
+        if (!(dt > 0 && std::isfinite(dt) && std::isfinite(t0) && std::isfinite(t_end) && t_end > t0))
+            throw invalid_argument("dt = " + shortest(dt) + " over t = " + shortest(t0) + " .. " + shortest(t_end) +
+                                   "; expected dt > 0 and t_end > t0, all finite");
+        const double steps = std::ceil((t_end - t0) / dt - 1e-9);
+        const std::size_t count = std::size_t(starts.shape(0));
+        if (!(steps * double(count) <= 1e4 * default_max_steps))
+            throw invalid_argument(std::to_string(count) + " starts of " + shortest(steps) + " steps; expected at most " +
+                                   shortest(1e4 * default_max_steps) + " trajectory-steps");
+        std::vector<std::vector<double>> x(count);
+        for (std::size_t i = 0; i < count; ++i) x[i].assign(starts.data(i, 0), starts.data(i, 0) + width);
+        ensemble_request rq;
+        rq.method = m.coefficients;
+        rq.t0 = t0;
+        rq.dt = dt;
+        rq.steps = std::size_t(steps);
+        rq.sample_every = std::max<std::size_t>(1, std::min<std::size_t>(sample_every, rq.steps));
+        rq.megno = megno;
+        rq.threads = threads;
+        std::vector<ensemble_row> rows;
+        {
+            py::gil_scoped_release released;
+            rows = sys_.ensemble(rq, x);
+        }
+        const auto length = static_cast<py::ssize_t>(count);
+        py::array_t<bool> stable(length);
+        py::array_t<double> error(length), indicator(length);
+        py::array_t<double> final_states({length, static_cast<py::ssize_t>(width)});
+        for (std::size_t i = 0; i < count; ++i) {
+            stable.mutable_data()[i] = rows[i].stable;
+            error.mutable_data()[i] = rows[i].max_energy_error;
+            indicator.mutable_data()[i] = megno ? rows[i].megno : std::nan("");
+            for (std::size_t k = 0; k < width; ++k)
+                final_states.mutable_data(py::ssize_t(i), py::ssize_t(k))[0] =
+                    k < rows[i].final_state.size() ? rows[i].final_state[k] : std::nan("");
+        }
+        py::dict out;
+        out["stable"] = stable;
+        out["max_energy_error"] = error;
+        out["megno"] = indicator;
+        out["final_states"] = final_states;
+        out["steps"] = rq.steps;
+        return out;
+    }
+
 private:
     runnable_system sys_;
     std::string name_;
 };
+
+// A table of one's own (a scene's [[table]]): usable by its name in run()
+// and ensemble(), composable.
+struct py_table {
+    table t;
+    static py_table make(const std::string& name, const std::vector<double>& kick, const std::vector<double>& drift,
+                         int order, const std::string& convention) {
+        if (name.empty()) throw invalid_argument("a table needs a name");
+        if (order < 0 || order > 100) throw invalid_argument("order = " + std::to_string(order) + "; expected 0..100 (0: unknown)");
+        const std::vector<coefficient> k(kick.begin(), kick.end()), d(drift.begin(), drift.end());
+        py_table p{convention == "seed"          ? from_seed(name, k, d, order)
+                   : convention == "drift-first" ? from_drift_first(name, d, k, order)
+                   : convention == "kick-first"  ? table(name, k, d, order)
+                                                 : throw invalid_argument("convention '" + convention +
+                                                                          "'; expected kick-first, drift-first or seed")};
+        add_python_table(p.t);
+        return p;
+    }
+    static py_table of(table t) {
+        add_python_table(t);
+        return {std::move(t)};
+    }
+};
+
+// check-table's verdict on coefficients, as `sympl check-table --json` gives it.
+py::object checked_table(const std::vector<double>& kick, const std::vector<double>& drift,
+                         const std::string& convention) {
+    const auto text = [](const std::vector<double>& v) {
+        std::string out;
+        for (double x : v) out += (out.empty() ? "" : ",") + shortest(x);
+        return out;
+    };
+    std::ostringstream printed;
+    std::streambuf* const saved = std::cout.rdbuf(printed.rdbuf());
+    try {
+        check_table(text(kick), text(drift), convention, true);
+    } catch (...) {
+        std::cout.rdbuf(saved);
+        throw;
+    }
+    std::cout.rdbuf(saved);
+    return py::module_::import("json").attr("loads")(printed.str());
+}
 
 system from_formulas(const std::string& T, const std::string& V, const std::string& H, const py::object& q0,
                      const py::object& p0, const std::map<std::string, double>& parameters,
@@ -299,7 +429,31 @@ PYBIND11_MODULE(sympl, m) {
              py::arg("t0") = 0.0, py::arg("tolerance") = 1e-8, py::arg("x0") = py::none(), py::arg("energy") = true,
              py::arg("energy_every") = 0, py::arg("trajectory_every") = 0, py::arg("timing") = false,
              "One run of a method by name: a dict of steps, force_evaluations, final_state, max_energy_error, "
-             "energy_series (t, error rows), trajectory (t, q, p rows), seconds (timing=True), generic_path");
+             "energy_series (t, error rows), trajectory (t, q, p rows), seconds (timing=True), generic_path")
+        .def("ensemble", &sympl::app::python::system::ensemble, py::arg("starts"), py::arg("method"), py::arg("t_end"),
+             py::arg("dt"), py::arg("t0") = 0.0, py::arg("sample_every") = 10, py::arg("megno") = false,
+             py::arg("threads") = 0,
+             "Rows of starts (q then p) run by one table on threads, the GIL released: stable, max_energy_error, "
+             "megno, final_states");
+    py::class_<py_table>(m, "Table", "A splitting table of one's own, usable by its name (a scene's [[table]])")
+        .def(py::init(&py_table::make), py::arg("name"), py::arg("kick"), py::arg("drift"), py::arg("order") = 0,
+             py::arg("convention") = "kick-first")
+        .def_property_readonly("name", [](const py_table& p) { return p.t.name(); })
+        .def_property_readonly("order", [](const py_table& p) { return p.t.order(); })
+        .def_property_readonly("kick", [](const py_table& p) {
+            return std::vector<double>(p.t.kick().begin(), p.t.kick().end());
+        })
+        .def_property_readonly("drift", [](const py_table& p) {
+            return std::vector<double>(p.t.drift().begin(), p.t.drift().end());
+        })
+        .def("adjoint", [](const py_table& p) { return py_table::of(sympl::adjoint(p.t)); })
+        .def("triple_jump", [](const py_table& p) { return py_table::of(sympl::triple_jump(p.t)); })
+        .def("suzuki", [](const py_table& p) { return py_table::of(sympl::suzuki_fractal(p.t)); })
+        .def("then", [](const py_table& a, const py_table& b, double fraction) {
+                 return py_table::of(sympl::concatenate(a.t, b.t, fraction));
+             }, py::arg("other"), py::arg("fraction") = 0.5, "This table for `fraction` of the step, then `other`");
+    m.def("check_table", &checked_table, py::arg("kick"), py::arg("drift"), py::arg("convention") = "kick-first",
+          "The order conditions and the measured order of coefficients, as `sympl check-table --json`");
     m.def("report", &report, py::arg("scenes") = std::vector<std::string>{}, py::arg("out") = "sympl-report",
           py::arg("quick") = true, py::arg("plots") = false, py::arg("threads") = 0,
           "The work-precision report over scene files (none: the built-in set), written to `out` as `sympl report` "

@@ -90,3 +90,37 @@ def test_the_walk_through_of_docs_python_md_runs_as_written(tmp_path, monkeypatc
     monkeypatch.chdir(tmp_path)
     for block in blocks:
         exec(compile(block, str(page), "exec"), {})
+
+
+def test_a_table_of_ones_own_runs_by_name_and_composes_to_its_order():
+    leapfrog = sympl.Table("my_leapfrog", kick=[0.5, 0.5], drift=[1.0, 0.0], order=2)
+    fourth = leapfrog.triple_jump()
+    assert fourth.name != leapfrog.name and len(fourth.kick) == 4
+    pendulum = sympl.System("pendulum")
+
+    def slope(name):
+        e = [pendulum.run(name, t_end=100.0, dt=dt)["max_energy_error"] for dt in (0.1, 0.05)]
+        return math.log2(e[0] / e[1])
+
+    assert abs(slope("my_leapfrog") - 2) < 0.15
+    assert abs(slope(fourth.name) - 4) < 0.3
+    with pytest.raises(ValueError, match="is already a method"):
+        sympl.Table("leapfrog_kdk", kick=[0.5, 0.5], drift=[1.0, 0.0])
+    with pytest.raises(ValueError, match="convention 'sideways'"):
+        sympl.Table("odd", kick=[1.0], drift=[1.0], convention="sideways")
+    verdict = sympl.check_table(kick=[0.5, 0.5], drift=[1.0, 0.0])
+    assert verdict["verdict_order"] == 2
+
+
+def test_an_ensemble_runs_every_start_as_a_single_run_does():
+    hh = sympl.System("henon_heiles")
+    starts = np.array([[0.0, q2, math.sqrt(2 / 12 - q2 ** 2 + 2 * q2 ** 3 / 3), 0.0] for q2 in np.linspace(-0.2, 0.3, 16)])
+    out = sympl.System("henon_heiles").ensemble(starts, "blanes_moan_s6", t_end=20.0, dt=0.05, threads=2)
+    assert out["stable"].all() and out["final_states"].shape == (16, 4)
+    single = hh.run("blanes_moan_s6", t_end=20.0, dt=0.05, x0=starts[3])
+    assert np.max(np.abs(out["final_states"][3] - single["final_state"])) < 1e-12
+    assert out["max_energy_error"].max() < 1e-6
+    with pytest.raises(ValueError, match="expected rows of 4 numbers"):
+        hh.ensemble(starts[:, :3], "blanes_moan_s6", t_end=1.0, dt=0.1)
+    with pytest.raises(ValueError, match="expected a plain splitting table"):
+        hh.ensemble(starts, "rk4", t_end=1.0, dt=0.1)
