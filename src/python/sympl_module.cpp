@@ -128,7 +128,8 @@ public:
     }
 
     py::dict run(const std::string& method, double t_end, double dt, double t0, double tolerance, const py::object& x0,
-                 bool energy, std::size_t energy_every, std::size_t trajectory_every, bool timing) const {
+                 bool energy, std::size_t energy_every, std::size_t trajectory_every, const py::object& times,
+                 int order, bool timing) const {
         const method_spec m = method_named(method);
         std::vector<double> x = x0.is_none() ? sys_.x0 : vector_of(x0, "x0");
         if (x.size() != sys_.x0.size())
@@ -154,6 +155,19 @@ public:
         rq.timing_repeats = timing ? 3 : 0;
         std::ostringstream trajectory;
         trajectory.precision(17);
+        if (!times.is_none()) {
+            // Dense output (dense-output.md): the states at these times, read off
+            // the Hermite interpolant of the step that holds each.
+            if (trajectory_every) throw invalid_argument("times and trajectory_every both choose the trajectory's rows; expected one");
+            if (order != 3 && order != 5) throw invalid_argument("order = " + std::to_string(order) + "; expected 3 or 5");
+            rq.output_times = vector_of(times, "times");
+            for (std::size_t k = 0; k < rq.output_times.size(); ++k)
+                if (!(rq.output_times[k] >= t0 && rq.output_times[k] <= t_end) || (k && rq.output_times[k] <= rq.output_times[k - 1]))
+                    throw invalid_argument("times[" + std::to_string(k) + "] = " + shortest(rq.output_times[k]) +
+                                           "; expected increasing times in [t0, t_end]");
+            rq.output_order = order;
+            rq.trajectory = &trajectory;
+        }
         if (trajectory_every) rq.trajectory = &trajectory;
         run_result r;
         {
@@ -427,9 +441,11 @@ PYBIND11_MODULE(sympl, m) {
         .def("energy", &sympl::app::python::system::energy, py::arg("x"))
         .def("run", &sympl::app::python::system::run, py::arg("method"), py::arg("t_end"), py::arg("dt") = 0.0,
              py::arg("t0") = 0.0, py::arg("tolerance") = 1e-8, py::arg("x0") = py::none(), py::arg("energy") = true,
-             py::arg("energy_every") = 0, py::arg("trajectory_every") = 0, py::arg("timing") = false,
+             py::arg("energy_every") = 0, py::arg("trajectory_every") = 0, py::arg("times") = py::none(),
+             py::arg("order") = 3, py::arg("timing") = false,
              "One run of a method by name: a dict of steps, force_evaluations, final_state, max_energy_error, "
-             "energy_series (t, error rows), trajectory (t, q, p rows), seconds (timing=True), generic_path")
+             "energy_series (t, error rows), trajectory (t, q, p rows: every trajectory_every steps, or at `times` by "
+             "Hermite interpolation of order 3 or 5), seconds (timing=True), generic_path")
         .def("ensemble", &sympl::app::python::system::ensemble, py::arg("starts"), py::arg("method"), py::arg("t_end"),
              py::arg("dt"), py::arg("t0") = 0.0, py::arg("sample_every") = 10, py::arg("megno") = false,
              py::arg("threads") = 0,

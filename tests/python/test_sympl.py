@@ -124,3 +124,27 @@ def test_an_ensemble_runs_every_start_as_a_single_run_does():
         hh.ensemble(starts[:, :3], "blanes_moan_s6", t_end=1.0, dt=0.1)
     with pytest.raises(ValueError, match="expected a plain splitting table"):
         hh.ensemble(starts, "rk4", t_end=1.0, dt=0.1)
+
+
+def test_states_at_given_times_come_from_the_interpolant_to_its_order():
+    # A circular orbit, run by a tenth-order table: the Hermite interpolant's
+    # error dominates, h^4/384 |x| (cubic) and h^6/46080 |x''| (quintic),
+    # with |x^(k)| = 1 on the unit circle.
+    kepler = sympl.System("kepler", parameters={"eccentricity": 0.0})
+    times = np.linspace(0.0, 2 * math.pi, 37)
+    exact = np.stack([np.cos(times), np.sin(times)], axis=1)
+
+    def error(dt, order):
+        rows = kepler.run("sofroniou_spaletta_10", t_end=2 * math.pi, dt=dt, times=times, order=order)["trajectory"]
+        assert rows.shape == (37, 5)
+        np.testing.assert_array_equal(rows[:, 0], times)
+        return np.max(np.abs(rows[:, 1:3] - exact))
+
+    for order, denominator in ((3, 384), (5, 46080)):
+        coarse, fine = error(0.1, order), error(0.05, order)
+        assert abs(math.log2(coarse / fine) - (order + 1)) < 0.15
+        assert fine <= 1.1 * 0.05 ** (order + 1) / denominator
+    with pytest.raises(ValueError, match="expected increasing times"):
+        kepler.run("leapfrog_kdk", t_end=1.0, dt=0.1, times=[0.5, 0.2])
+    with pytest.raises(ValueError, match="order = 4; expected 3 or 5"):
+        kepler.run("leapfrog_kdk", t_end=1.0, dt=0.1, times=[0.5], order=4)
