@@ -96,12 +96,18 @@ std::string as_text(const scene& s, const outcome& o) {
 // records how many bytes of it belong to the run).
 class checkpointed_method {
 public:
-    checkpointed_method(const scene& s, const scene_method& m, double dt, bool resume, std::string trajectory_header)
+    checkpointed_method(const scene& s, const scene_method& m, double dt, bool resume, std::string trajectory_header,
+                        std::size_t state_size)
         : s_(&s), m_(&m), dt_(dt), file_(s.checkpoint.file + "." + file_name_part(m.name)),
           trajectory_file_(file_.string() + ".trajectory"), with_trajectory_(!trajectory_header.empty()) {
         if (file_.has_parent_path()) fs::create_directories(file_.parent_path());
         remove_stale_temporaries();
-        if (resume && fs::exists(file_)) from_ = read_checkpoint(file_, s.text_hash, m.name, dt);
+        if (resume && fs::exists(file_)) {
+            from_ = read_checkpoint(file_, s.text_hash, m.name, dt);
+            // An extrapolated method's step count is its own (inner steps): only its time is held to the span.
+            check_checkpoint_fields(*from_, file_, state_size, s.t0, s.t_end,
+                                    steps_in_physical_time(m) && m.extrapolation_columns == 0);
+        }
         if (!with_trajectory_) return;
         if (from_) {
             std::error_code ec;
@@ -110,6 +116,17 @@ public:
                 throw error("checkpoint " + file_.string() + ": its trajectory " + trajectory_file_.string() +
                             " is shorter than the " + std::to_string(from_->trajectory_bytes) +
                             " bytes it recorded; not resumed from (remove both to start over)");
+            // Its rows end where the record says: at a line's end, the header's at least.
+            char last = '\n';
+            if (from_->trajectory_bytes > 0) {
+                std::ifstream rows(trajectory_file_, std::ios::binary);
+                rows.seekg(std::streamoff(from_->trajectory_bytes - 1));
+                rows.get(last);
+            }
+            if (from_->trajectory_bytes < trajectory_header.size() || last != '\n')
+                throw error("checkpoint " + file_.string() + ": it records " + std::to_string(from_->trajectory_bytes) +
+                            " bytes of " + trajectory_file_.string() + ", which is not the end of a row; expected a "
+                            "row's end; not resumed from (remove both to start over)");
             fs::resize_file(trajectory_file_, from_->trajectory_bytes);  // rows written after the checkpoint go
             trajectory_.open(trajectory_file_, std::ios::binary | std::ios::app);
         } else {
@@ -224,7 +241,7 @@ outcome run_one(const scene& s, const runnable_system& p, const planned_run& pla
     }
     std::optional<checkpointed_method> checkpoints;
     if (s.checkpoint.every_steps) {
-        checkpoints.emplace(s, m, rq.dt, resume, trajectory ? header : std::string());
+        checkpoints.emplace(s, m, rq.dt, resume, trajectory ? header : std::string(), p.x0.size());
         checkpoints->attach(rq);
     }
     outcome o{&m, p.run(m, rq, s.t0, s.t_end, p.x0)};

@@ -5,12 +5,14 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cmath>
 #include <cinttypes>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <sstream>
 
+#include "output/format.hpp"
 #include "output/writers.hpp"
 #include "reading/file_text.hpp"
 
@@ -198,6 +200,43 @@ checkpoint_record read_checkpoint(const fs::path& file, const std::string& scene
         r.trajectory_bytes = b.count(l, "trajectory_bytes", UINT64_MAX / 2);
     }
     return r;
+}
+
+void check_checkpoint_fields(const checkpoint_record& r, const fs::path& file, std::size_t state_size, double t0,
+                             double t_end, bool fixed_step) {
+    const auto field = [&](const std::string& what, const std::string& value, const std::string& expected) {
+        refuse(file, "holds " + what + " = " + value + "; expected " + expected);
+    };
+    const auto count = [&](const std::string& what, std::size_t n, const std::string& expected) {
+        refuse(file, "holds " + what + " of " + std::to_string(n) + " numbers; expected " + expected);
+    };
+    if (r.state.size() != state_size) count("a state", r.state.size(), std::to_string(state_size) + ", q then p");
+    const auto finite = [&](const std::vector<double>& v, const char* what) {
+        for (std::size_t k = 0; k < v.size(); ++k)
+            if (!std::isfinite(v[k])) field(std::string(what) + "[" + std::to_string(k) + "]", shortest(v[k]), "a finite number");
+    };
+    finite(r.state, "state");
+    if (!(std::isfinite(r.time) && r.time >= t0 && r.time <= t_end))
+        field("time", shortest(r.time), "a time in the scene's span [" + shortest(t0) + ", " + shortest(t_end) + "]");
+    if (fixed_step && r.dt > 0) {
+        const double most = std::ceil((t_end - t0) / r.dt) + 1;
+        if (!(double(r.step) <= most))
+            field("step", std::to_string(r.step), "at most " + shortest(most) + " steps of dt = " + shortest(r.dt));
+    }
+    // LogH's memory is of its extended state, q and t (or p and p_t): one more.
+    const std::size_t half = state_size / 2;
+    const auto sized = [&](const std::vector<double>& v, const char* what, bool needed) {
+        if (!(v.size() == half || (!fixed_step && v.size() == half + 1) || (v.empty() && !needed)))
+            count(std::string("a ") + what, v.size(), std::to_string(half) + (needed ? " (it is marked fresh)" : " or none"));
+        finite(v, what);
+    };
+    sized(r.memory.force, "force", r.memory.force_fresh);
+    sized(r.memory.velocity, "velocity", r.memory.velocity_fresh);
+    sized(r.memory.q_error, "q_error", false);
+    sized(r.memory.p_error, "p_error", false);
+    finite(r.carried, "carried");
+    if (!(r.max_energy_error == -1 || (std::isfinite(r.max_energy_error) && r.max_energy_error >= 0)))
+        field("max_energy_error", shortest(r.max_energy_error), "-1 (not measured) or a finite value >= 0");
 }
 
 }  // namespace sympl::app

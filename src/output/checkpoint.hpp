@@ -49,6 +49,17 @@ struct checkpoint_record {
 // stepper's, run_context.hpp).
 inline constexpr int checkpoint_format = 4;
 
+// A record read back, held to what the run it resumes can take before
+// anything runs from it: a state of `state_size` finite numbers, a time in
+// [t0, t_end], at a fixed step no more steps than the span holds, each of the
+// stepper's vectors empty or of the half state's size (one more for LogH's
+// extended state; present where it is marked fresh), every number finite,
+// the energy error -1 or >= 0. A field
+// out of place is a refusal naming the file, the field, its value and what
+// was expected.
+void check_checkpoint_fields(const checkpoint_record& r, const std::filesystem::path& file, std::size_t state_size,
+                             double t0, double t_end, bool fixed_step);
+
 // FNV-1a, 64 bits, as 16 hex digits: the scene's identity and the file's checksum.
 std::string fnv1a_hex(const std::string& bytes);
 

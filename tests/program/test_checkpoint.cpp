@@ -123,4 +123,84 @@ TEST_CASE("checkpoint: truncated, corrupted, foreign or mismatched files are ref
     fs::remove_all(dir);
 }
 
+TEST_CASE("checkpoint: a record's fields are held to the run it resumes, each refusal naming the field") {
+    // sample(): 2 degrees of freedom, 123456789 steps of 0.1 to t = 12345678.9.
+    const auto refusal_of = [](const checkpoint_record& r, double t_end = 2e7, bool fixed = true) -> std::string {
+        try {
+            check_checkpoint_fields(r, "run.ckpt", 4, 0, t_end, fixed);
+        } catch (const sympl::error& e) {
+            return e.what();
+        }
+        return "accepted";
+    };
+    CHECK(refusal_of(sample()) == "accepted");
+    const auto with = [](auto change) {
+        checkpoint_record r = sample();
+        change(r);
+        return r;
+    };
+    CHECK(refusal_of(with([](auto& r) { r.state.pop_back(); })).find("holds a state of 3 numbers; expected 4, q then p") !=
+          std::string::npos);
+    CHECK(refusal_of(with([](auto& r) { r.state[1] = NAN; })).find("state[1] = nan; expected a finite number") !=
+          std::string::npos);
+    // LogH at t = -1e300, or NaN: outside the span (the hang and the broken CSV of issue 59).
+    CHECK(refusal_of(with([](auto& r) { r.time = -1e300; })).find("holds time = -1e+300; expected a time in the scene's "
+                                                                 "span [0, 2e+07]") != std::string::npos);
+    CHECK(refusal_of(with([](auto& r) { r.time = NAN; })).find("holds time = nan") != std::string::npos);
+    CHECK(refusal_of(with([](auto& r) { r.step = 300000000; })).find("holds step = 300000000; expected at most "
+                                                                    "200000001 steps of dt = 0.1") != std::string::npos);
+    CHECK(refusal_of(with([](auto& r) { r.step = 300000000; }), 2e7, false) == "accepted");  // LogH counts its own steps
+    // A fresh force of no numbers (the SIGSEGV of issue 59), a velocity of the wrong length.
+    CHECK(refusal_of(with([](auto& r) { r.memory.force.clear(); })).find("holds a force of 0 numbers; expected 2 (it "
+                                                                        "is marked fresh)") != std::string::npos);
+    CHECK(refusal_of(with([](auto& r) { r.memory.velocity = {1, 2, 3}; })).find("a velocity of 3 numbers; expected 2 "
+                                                                              "or none") != std::string::npos);
+    CHECK(refusal_of(with([](auto& r) { r.carried[0] = INFINITY; })).find("carried[0] = inf") != std::string::npos);
+    CHECK(refusal_of(with([](auto& r) { r.max_energy_error = -2; })).find("max_energy_error = -2; expected -1") !=
+          std::string::npos);
+}
+
 }  // namespace test_program_test_checkpoint
+
+#include "commands/run_scene.hpp"
+#include "reading/scene.hpp"
+
+namespace test_program_test_checkpoint_rows {
+
+using namespace sympl::app;
+namespace fs = std::filesystem;
+
+TEST_CASE("checkpoint: a record whose trajectory offset is not a row's end is refused, the file kept") {
+    const fs::path dir = scratch_directory("sympl_ckpt_rows");
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const std::string text = "name = \"rows\"\nsystem = \"harmonic_oscillator\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.1\n"
+                             "t_end = 10\ncheckpoint = {every_steps = 10, file = \"" + (dir / "run").string() + "\"}\n"
+                             "[output]\ntrajectory_every = 1\ndirectory = \"" + (dir / "out").string() + "\"\n";
+    const scene s = parse_scene(text, (dir / "rows.toml").string());
+    const std::string header = "t,q1,p1\n", rows = "0,1,0\n0.1,0.995,-0.0998\n";
+    checkpoint_record r;
+    r.scene_hash = s.text_hash;
+    r.method = "leapfrog_kdk";
+    r.dt = 0.1;
+    r.step = 1;
+    r.time = 0.1;
+    r.state = {0.995, -0.0998};
+    r.trajectory_bytes = header.size() + 3;  // inside the first row
+    write_checkpoint(dir / "run.leapfrog_kdk", r);
+    std::ofstream(dir / "run.leapfrog_kdk.trajectory", std::ios::binary) << header << rows;
+    std::ostringstream out;
+    const std::string expected =
+        "records 11 bytes of " + (dir / "run.leapfrog_kdk.trajectory").string() + ", which is not the end of a row";
+    std::string refusal = "accepted";
+    try {
+        run_scene(s, false, out, 1e9, true);
+    } catch (const sympl::error& e) {
+        refusal = e.what();
+    }
+    CHECK_MESSAGE(refusal.find(expected) != std::string::npos, refusal);
+    CHECK(fs::file_size(dir / "run.leapfrog_kdk.trajectory") == header.size() + rows.size());  // nothing cut
+    fs::remove_all(dir);
+}
+
+}  // namespace test_program_test_checkpoint_rows
