@@ -1,6 +1,8 @@
-// The program's generic path against its compiled one (src/running/generic_path.hpp):
-// the same method, step and span through each, timed side by side in one
-// process, rounds interleaved, with the program's own timing (src/report/timing.hpp).
+// The program's generic path against its compiled one (src/running/generic_path.hpp),
+// and the same system written as formulas (src/formulas/, compiled once at
+// start-up as a scene's would be): the same method, step and span through
+// each, timed side by side in one process, rounds interleaved, with the
+// program's own timing (src/report/timing.hpp).
 // Built as the program is (CMake's Release flags, no -march): it links the
 // program's library, whose runs these are.
 //   bench_generic_path            FPU-beta N = 32 and Henon-Heiles, 4 methods each
@@ -14,6 +16,7 @@
 #include <sympl/hamiltonians/fpu_beta.hpp>
 #include <sympl/hamiltonians/henon_heiles.hpp>
 
+#include "formulas/formula_entry.hpp"
 #include "running/generic_path.hpp"
 #include "running/systems.hpp"
 
@@ -38,20 +41,35 @@ double ns_per_step(const run_function& run, const runnable_system& p, const std:
     return r.seconds / steps * 1e9;
 }
 
-void compare(const char* label, const runnable_system& p, const run_function& generic, double dt, double t_end, int rounds) {
+void compare(const char* label, const runnable_system& p, const run_function& generic, const runnable_system& formulas,
+             double dt, double t_end, int rounds) {
     std::printf("%s (dt = %g, %g steps a run)\n", label, dt, t_end / dt);
-    std::printf("  %-18s %14s %14s %8s\n", "method", "compiled ns", "generic ns", "ratio");
+    std::printf("  %-16s %11s %11s %11s %9s %9s\n", "method", "compiled ns", "generic ns", "formula ns", "generic/",
+                "formula/");
     for (const char* name : {"leapfrog_kdk", "blanes_moan_s6", "dprkn8", "rk4"}) {
-        std::vector<double> compiled, erased, ratios;
+        std::vector<double> compiled, erased, written, ratios, formula_ratios;
         for (int k = 0; k < rounds; ++k) {
             const double a = ns_per_step(p.runner, p, name, dt, t_end);
             const double b = ns_per_step(generic, p, name, dt, t_end);
+            const double c = ns_per_step(formulas.runner, formulas, name, dt, t_end);
             compiled.push_back(a);
             erased.push_back(b);
+            written.push_back(c);
             ratios.push_back(b / a);
+            formula_ratios.push_back(c / a);
         }
-        std::printf("  %-18s %14.1f %14.1f %8.2f\n", name, median(compiled), median(erased), median(ratios));
+        std::printf("  %-16s %11.1f %11.1f %11.1f %9.2f %9.2f\n", name, median(compiled), median(erased),
+                    median(written), median(ratios), median(formula_ratios));
     }
+}
+
+// The system as a scene's [system] table would write it (examples/formulas/).
+runnable_system formula_system(sympl::app::formulas::formula_texts t, const std::vector<double>& x0) {
+    const std::size_t n = x0.size() / 2;
+    t.q0.assign(x0.begin(), x0.begin() + long(n));
+    t.p0.assign(x0.begin() + long(n), x0.end());
+    sympl::app::formulas::define_formula_system(t);
+    return make_system(t.name, {}, {}, {}, "bench");
 }
 
 }  // namespace
@@ -61,9 +79,20 @@ int main(int argc, char** argv) {
     const int rounds = quick ? 3 : 9;
     const runnable_system chain = make_system("fpu_beta", {{"n", 32}}, {}, {}, "bench");
     const auto chain_generic = detail::generic_run(erased_separable::of(sympl::hamiltonians::fpu_beta{1}), chain.energy);
-    compare("FPU-beta, N = 32", chain, chain_generic, 0.05, 200, rounds);
+    sympl::app::formulas::formula_texts fpu;
+    fpu.name = "fpu_formulas";
+    fpu.parameters = {{"beta", 1.0}, {"n", 32}};
+    fpu.T = "sum(i, 0, n - 1, p[i]^2/2)";
+    fpu.V = "q[0]^2/2 + beta*q[0]^4/4 + sum(i, 0, n - 2, (q[i+1] - q[i])^2/2 + beta*(q[i+1] - q[i])^4/4)"
+            " + q[n-1]^2/2 + beta*q[n-1]^4/4";
+    compare("FPU-beta, N = 32", chain, chain_generic, formula_system(fpu, chain.x0), 0.05, 200, rounds);
     const runnable_system hh = make_system("henon_heiles", {}, {}, {}, "bench");
     const auto hh_generic = detail::generic_run(erased_separable::of(sympl::hamiltonians::henon_heiles{}), hh.energy);
-    compare("Henon-Heiles", hh, hh_generic, 0.05, 500, rounds);
-    std::printf("ratio: generic / compiled, median of %d interleaved rounds\n", rounds);
+    sympl::app::formulas::formula_texts hhf;
+    hhf.name = "hh_formulas";
+    hhf.coordinates = {"x", "y"};
+    hhf.T = "(px^2 + py^2) / 2";
+    hhf.V = "(x^2 + y^2) / 2 + x^2*y - y^3/3";
+    compare("Henon-Heiles", hh, hh_generic, formula_system(hhf, hh.x0), 0.05, 500, rounds);
+    std::printf("ratios: generic / compiled and formula / compiled, medians of %d interleaved rounds\n", rounds);
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <optional>
 #include <unordered_map>
 #include <vector>
 
@@ -116,7 +117,7 @@ public:
         switch (n.kind) {
             case node::q:
             case node::p:
-                if (n.kind == wrt) accumulate(grad + "[" + index_of(n) + "]", a);
+                if (n.kind == wrt) accumulate(grad, index_of(n), offset_in_loop(n), a);
                 return;
             case node::add:
                 if (depends_on(0)) adjoint(*n.children[0], a, wrt, grad);
@@ -186,17 +187,19 @@ public:
     // The contributions to each element of the gradient gathered in a scope
     // are added to it once, at the scope's end (flush): one load and store
     // per element and term instead of one per occurrence.
-    void accumulate(const std::string& element, const std::string& a) {
+    void accumulate(const std::string& array, const std::string& index, std::optional<long> offset,
+                    const std::string& a) {
         auto& pending = pending_.back();
-        for (auto& [e, sum] : pending)
-            if (e == element) {
-                sum = declare(sum + " + " + a);
+        for (pending_add& e : pending)
+            if (e.array == array && e.index == index) {
+                e.sum = declare(e.sum + " + " + a);
                 return;
             }
-        pending.emplace_back(element, a);
+        pending.push_back({array, index, offset, a});
     }
     void flush() {
-        for (const auto& [e, sum] : pending_.back()) line(e + " += " + sum + ";");
+        for (const pending_add& e : pending_.back()) line(e.element() + " += " + e.sum + ";");
+        written_.back() = written_.back() || !pending_.back().empty();
         pending_.back().clear();
     }
 
@@ -280,7 +283,51 @@ private:
     std::string element(const node& n) const {
         return std::string(n.kind == node::q ? "q" : "p") + "[" + index_of(n) + "]";
     }
+    // An element q[i + c] or p[i + c] of the innermost sum's index i, c an
+    // integer: its offset c.
+    std::optional<long> offset_in_loop(const node& n) const {
+        if (!n.indexed || depth_ == 0) return std::nullopt;
+        const node& i = *n.children[0];
+        const auto is_index = [&](const node& m) { return m.kind == node::index && m.slot == depth_ - 1; };
+        const auto is_whole = [](const node& m) {
+            return m.kind == node::number && m.value == std::floor(m.value) && std::fabs(m.value) < 0x1p52;
+        };
+        if (is_index(i)) return 0;
+        if (i.kind == node::add && is_index(*i.children[0]) && is_whole(*i.children[1])) return long(i.children[1]->value);
+        if (i.kind == node::add && is_whole(*i.children[0]) && is_index(*i.children[1])) return long(i.children[0]->value);
+        if (i.kind == node::subtract && is_index(*i.children[0]) && is_whole(*i.children[1]))
+            return -long(i.children[1]->value);
+        return std::nullopt;
+    }
+
+    // A sum whose terms add into exactly two elements g[i + c] and g[i + c + 1]
+    // of one gradient (a chain's springs) carries the second in a register to
+    // the next term, where it is the first: each element is then loaded and
+    // stored once, with no term waiting on the store of the one before. The
+    // same additions in the same order: g[i + c] receives the carried share
+    // from term i - 1, then its own.
+    bool carry(std::size_t loop_start, int loop_indent) {
+        const auto& pending = pending_.back();
+        if (written_.back() || pending.size() != 2 || pending[0].array != pending[1].array || !pending[0].offset ||
+            !pending[1].offset)
+            return false;
+        const bool first_low = *pending[0].offset < *pending[1].offset;
+        const pending_add& low = pending[first_low ? 0 : 1];
+        const pending_add& high = pending[first_low ? 1 : 0];
+        if (*high.offset != *low.offset + 1) return false;
+        const std::string id = std::to_string(next_++);
+        carried_ = {"c" + id, "h" + id, "j" + id, high.array};
+        text.insert(loop_start, std::string(4 * (loop_indent + 1), ' ') + R_ + " " + carried_.value + " = (" + R_ +
+                                    ")0.0; int " + carried_.held + " = 0; long " + carried_.at + " = 0;\n");
+        line(low.element() + " = " + carried_.held + " ? (" + low.element() + " + " + carried_.value + ") + " +
+             low.sum + " : " + low.element() + " + " + low.sum + ";");
+        line(carried_.value + " = " + high.sum + "; " + carried_.held + " = 1; " + carried_.at + " = " + high.index +
+             ";");
+        return true;
+    }
+
     void open_loop(const node& sum) {
+        loop_starts_.push_back(text.size());
         const std::string i = "i" + std::to_string(depth_);
         line("for (long " + i + " = (long)" + plain(*sum.children[0]) + "; " + i + " <= (long)" +
              plain(*sum.children[1]) + "; ++" + i + ") {");
@@ -288,21 +335,41 @@ private:
         ++depth_;
         scopes_.emplace_back();
         pending_.emplace_back();
+        written_.push_back(false);
     }
     void close_loop() {
-        flush();
+        const bool carried = carry(loop_starts_.back(), indent_ - 1);
+        if (!carried) flush();
+        const bool wrote = carried || written_.back();
+        loop_starts_.pop_back();
         pending_.pop_back();
+        written_.pop_back();
         scopes_.pop_back();
         --depth_;
         --indent_;
         line("}");
+        if (carried)
+            line("if (" + carried_.held + ") " + carried_.array + "[" + carried_.at + "] += " + carried_.value + ";");
+        written_.back() = written_.back() || wrote;
     }
 
     std::string R_, F_;
     int next_ = 0, indent_ = 0;
     std::size_t depth_ = 0;
     std::vector<std::map<const node*, std::string>> scopes_{1};
-    std::vector<std::vector<std::pair<std::string, std::string>>> pending_{1};
+    // A contribution to array[index], gathered in a scope; offset: index = i + offset for the scope's sum index i.
+    struct pending_add {
+        std::string array, index;
+        std::optional<long> offset;
+        std::string sum;
+        std::string element() const { return array + "[" + index + "]"; }
+    };
+    std::vector<std::vector<pending_add>> pending_{1};
+    std::vector<bool> written_{false};       // a scope's nested sums wrote into a gradient
+    std::vector<std::size_t> loop_starts_;   // where each open sum's loop begins in text
+    struct {
+        std::string value, held, at, array;
+    } carried_;                               // the names of the last carry() (used at its loop's end)
     std::unordered_map<const node*, bool> on_q_, on_p_;
 };
 

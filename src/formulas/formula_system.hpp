@@ -49,6 +49,7 @@ struct prepared_formulas {
     long dimension = 0;
     std::shared_ptr<const machine_code> code;  // null: interpreted
     std::string interpreted_because;           // why code is null
+    bool velocity_is_p = false;                // T = sum p_i^2 / 2 (prepare() checks)
     compiled_functions<double> d;
     compiled_functions<long double> l;
 
@@ -128,6 +129,8 @@ public:
     }
 
     const prepared_formulas& prepared() const { return *f_; }
+    // dT/dp = p: drifts need no call (core/splitting_loop.hpp).
+    bool velocity_is_p() const { return f_->velocity_is_p; }
 
 private:
     std::shared_ptr<const prepared_formulas> f_;

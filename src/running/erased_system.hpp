@@ -117,6 +117,9 @@ public:
     void velocity(const V& p, V& v) const {
         calls<scalar_of<V>>().velocity(self_.get(), p, v);
     }
+    // dT/dp is p itself (unit masses), so that a drift needs no call: the
+    // splitting loop's velocity_is_p (core/splitting_loop.hpp).
+    bool velocity_is_p() const { return velocity_is_p_; }
     // J_F(q) u for the force-gradient kicks, on doubles; a system without it
     // was refused before the run by its form (requirements.hpp).
     void force_derivative(const erased_vector& q, const erased_vector& u, erased_vector& df) const {
@@ -130,6 +133,7 @@ public:
         e.calls_ = {detail::separable_calls<double>::of<Sys>(), detail::separable_calls<long double>::of<Sys>(),
                     detail::separable_calls<dual<double, 8>>::of<Sys>(),
                     detail::separable_calls<dual<double, 1>>::of<Sys>()};
+        e.velocity_is_p_ = velocity_is_identity(*static_cast<const Sys*>(e.self_.get()));
         e.force_derivative_ = [](const void* s, const erased_vector& q, const erased_vector& u, erased_vector& df) {
             if constexpr (differentiable_force<Sys, erased_vector>)
                 sympl::force_derivative(*static_cast<const Sys*>(s), q, u, df);
@@ -146,10 +150,28 @@ private:
         return std::get<detail::separable_calls<S>>(calls_);
     }
 
+    // A system's velocity(p) that hands back p itself, as a compiled run
+    // would find it; or a system that says so (a formula system whose T is
+    // sum p_i^2 / 2).
+    template <class Sys>
+    static bool velocity_is_identity(const Sys& sys) {
+        if constexpr (requires { { sys.velocity_is_p() } -> std::same_as<bool>; }) {
+            return sys.velocity_is_p();
+        } else if constexpr (requires(const erased_vector& p) {
+                                 { sys.velocity(p) } -> std::same_as<const erased_vector&>;
+                             }) {
+            const erased_vector p = erased_vector::Ones(1);
+            return &sys.velocity(p) == &p;
+        } else {
+            return false;
+        }
+    }
+
     std::shared_ptr<const void> self_;
     std::tuple<detail::separable_calls<double>, detail::separable_calls<long double>,
                detail::separable_calls<dual<double, 8>>, detail::separable_calls<dual<double, 1>>>
         calls_;
+    bool velocity_is_p_ = false;
     void (*force_derivative_)(const void*, const erased_vector&, const erased_vector&, erased_vector&) = nullptr;
 };
 

@@ -147,6 +147,51 @@ TEST_CASE("formula code: compiled values are the interpreter's bits, gradients t
     VL fl(5);
     sys.force(ql, fl);
     CHECK((fl.cast<double>() - f_ad).norm() <= 64 * 2.2e-16 * (1 + f_ad.norm()));
+    // That T has masses 2 + i: drifts need its velocity.
+    CHECK_FALSE(prepared->velocity_is_p);
+}
+
+TEST_CASE("formula code: a chain's neighbours carried from term to term give the gradient of the interpreter's AD") {
+    const names known{{"a", "n"}, {}, {}, 6};
+    const std::vector<double> k{0.7, 6};
+    Eigen::VectorXd q(6);
+    q << 0.3, -0.2, 0.5, 0.11, -0.4, 0.25;
+    // Offsets (1, 0) and (-1, 0) are carried; (-1, 1) and a sum inside a sum are not.
+    for (const char* text : {"sum(i, 0, n - 2, (q[i+1] - q[i])^2 / 2 + a * (q[i+1] - q[i])^4 / 4)",
+                             "q[0]^2 + sum(i, 1, n - 1, cos(q[i] - q[i-1])) + q[n-1]^4",
+                             "sum(i, 1, n - 2, q[i-1] * q[i+1])",
+                             "sum(i, 0, n - 2, sum(j, i + 1, n - 1, a / sqrt(1 + (q[i] - q[j])^2)))"}) {
+        CAPTURE(text);
+        const auto T = std::make_shared<formula>(parse("sum(i, 0, n - 1, p[i]^2 / 2)", known));
+        const auto V = std::make_shared<formula>(parse(text, known));
+        const bool chain = std::string(text).find("q[i+1] - q[i]") != std::string::npos ||
+                           std::string(text).find("q[i] - q[i-1]") != std::string::npos;
+        CHECK((separable_source(*T, *V).find("if (h") != std::string::npos) == chain);
+        std::vector<double> x0(q.data(), q.data() + 6);
+        x0.resize(12, 0.1);
+        const auto prepared = prepare(T, V, nullptr, k, x0);
+        REQUIRE_MESSAGE(prepared->code, prepared->interpreted_because);
+        Eigen::VectorXd f(6), f_ad(6);
+        separable_formulas(prepared).force(q, f);
+        sympl::detail::gradient(
+            [&](const auto& x) { return evaluate<sympl::scalar_of<std::decay_t<decltype(x)>>>(*V, k, x, x); }, q, f_ad,
+            -1.0);
+        CHECK((f - f_ad).norm() <= 64 * 2.2e-16 * (1 + f_ad.norm()));
+    }
+}
+
+TEST_CASE("formula code: T = sum p_i^2 / 2 is found to drift by p itself, and no other T") {
+    const names known{{"m", "n"}, {}, {}, 3};
+    const std::vector<double> x0{0.1, 0.2, 0.3, 0.4, 0.5, 0.6};
+    const auto V = std::make_shared<formula>(parse("sum(i, 0, n - 1, q[i]^2) / 2", known));
+    const auto with = [&](const char* t, double m) {
+        return prepare(std::make_shared<formula>(parse(t, known)), V, nullptr, {m, 3}, x0)->velocity_is_p;
+    };
+    CHECK(with("sum(i, 0, n - 1, p[i]^2 / 2)", 1));
+    CHECK(with("(p[0]^2 + p[1]^2 + p[2]^2) / (2 * m)", 1));
+    CHECK_FALSE(with("(p[0]^2 + p[1]^2 + p[2]^2) / (2 * m)", 2));             // masses 2
+    CHECK_FALSE(with("(p[0]^2 + p[1]^2 + p[2]^2 + p[0]*p[1]) / 2", 1));       // not diagonal
+    CHECK_FALSE(with("(p[0]^2 + p[1]^2) / 2 + sqrt(1 + p[2]^2)", 1));         // not quadratic
 }
 
 TEST_CASE("formula code: nothing of the formula's text reaches the compiler") {

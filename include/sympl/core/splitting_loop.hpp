@@ -66,7 +66,8 @@ struct substep_updates {
     // the same order.
     template <bool Compensated>
     [[gnu::always_inline]] inline void kick_and_drift(State& x, const vector& f, vector& v, scalar hk, scalar hd) {
-        if constexpr (!Compensated && reference_velocity && State::dimension == Eigen::Dynamic) {
+        if constexpr (!Compensated && (reference_velocity || says_velocity_is_p) &&
+                      State::dimension == Eigen::Dynamic) {
             if (velocity_is_p) {
                 scalar* const q = x.q.data();
                 scalar* const p = x.p.data();
@@ -127,6 +128,11 @@ struct substep_updates {
     static constexpr bool reference_velocity = requires(const H& hh, const vector& p) {
         { hh.velocity(p) } -> std::same_as<const vector&>;
     };
+    // A system whose type cannot say it (one behind function pointers, such as
+    // the program's generic path) may say at run time that dT/dp = p.
+    static constexpr bool says_velocity_is_p = requires(const H& hh) {
+        { hh.velocity_is_p() } -> std::same_as<bool>;
+    };
     // A small fixed-size state runs in registers, updated by Eigen's packet operations (docs/speed.md).
     static constexpr bool small_fixed = State::dimension != Eigen::Dynamic && State::dimension <= 16;
     // An analytic velocity that returns an expression (e.g. p / m) fuses into the drift.
@@ -183,7 +189,7 @@ struct splitting_loop : substep_updates<H, State> {
     using typename base::scalar;
     using typename base::vector;
     using base::h, base::q_error, base::p_error, base::increment, base::sum, base::velocity_is_p;
-    using base::reference_velocity, base::small_fixed, base::fused_velocity;
+    using base::reference_velocity, base::says_velocity_is_p, base::small_fixed, base::fused_velocity;
 
     splitting_loop(H hamiltonian, table t, stepper_options o)
         : base(std::move(hamiltonian)), method(std::move(t)), options(o) {
@@ -242,6 +248,7 @@ struct splitting_loop : substep_updates<H, State> {
             body.back() = joined ? sizes[L - 1] + sizes[0] : sizes[0];
         }
         if constexpr (reference_velocity) velocity_is_p = &h.velocity(x.p) == &x.p;
+        else if constexpr (says_velocity_is_p) velocity_is_p = h.velocity_is_p();
         const bool reuse_v = have_velocity && !fused_velocity;
         if constexpr (State::dimension != Eigen::Dynamic) {
             State y = x;
@@ -260,7 +267,9 @@ struct splitting_loop : substep_updates<H, State> {
         forces_counted += (n - 1) * body_kicks + kicks - (first_is_kick && have_force);
         velocities_counted += (n - 1) * body_drifts + drifts - (!first_is_kick && reuse_v);
         force_fresh = last_is_kick;
-        velocity_fresh = !last_is_kick && !fused_velocity;
+        // A pass that drifted by p itself (kick_and_drift) left `velocity` as it was.
+        const bool drifted_by_p = velocity_is_p && !options.compensated && State::dimension == Eigen::Dynamic;
+        velocity_fresh = !last_is_kick && !fused_velocity && !drifted_by_p;
     }
 
     // One step of a small state handed back as the last run returned it, with
