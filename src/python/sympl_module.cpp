@@ -9,6 +9,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <iostream>
@@ -23,6 +24,7 @@
 #include "commands/check_table.hpp"
 
 #include "formulas/formula_entry.hpp"
+#include "python/force_callable.hpp"
 #include "methods/method_kinds.hpp"
 #include "output/format.hpp"
 #include "reading/near_names.hpp"
@@ -115,6 +117,10 @@ public:
         name_ = name;
     }
 
+    // A system whose force is a Python callable (force_callable.hpp).
+    system(std::shared_ptr<const force_callables> c, std::vector<double> x0, std::string name)
+        : sys_(callable_runnable(c, std::move(x0))), name_(std::move(name)), callables_(std::move(c)) {}
+
     const std::string& name() const { return name_; }
     std::size_t degrees_of_freedom() const { return sys_.degrees_of_freedom; }
     py::array_t<double> x0() const { return array_of(sys_.x0); }
@@ -129,7 +135,7 @@ public:
 
     py::dict run(const std::string& method, double t_end, double dt, double t0, double tolerance, const py::object& x0,
                  bool energy, std::size_t energy_every, std::size_t trajectory_every, const py::object& times,
-                 int order, bool timing) const {
+                 int order, bool timing, bool observe) const {
         const method_spec m = method_named(method);
         std::vector<double> x = x0.is_none() ? sys_.x0 : vector_of(x0, "x0");
         if (x.size() != sys_.x0.size())
@@ -146,9 +152,9 @@ public:
                                    shortest(default_max_steps) + " (a larger dt or a shorter span)");
         if (adaptive_kind && !(tolerance > 0 && tolerance < 1))
             throw invalid_argument("tolerance = " + shortest(tolerance) + "; expected a value in (0, 1)");
-        run_request rq;
-        rq.dt = dt;
-        rq.tolerance = tolerance;
+        if (!observe) return final_only(m, method, rq_of(dt, tolerance, energy_every, trajectory_every, times, timing),
+                                        t0, t_end, x);
+        run_request rq = rq_of(dt, tolerance, 0, 0, py::none(), false);
         rq.energy = energy && sys_.energy;
         rq.energy_series_every = energy_every;
         rq.trajectory_every = trajectory_every;
@@ -174,16 +180,9 @@ public:
             py::gil_scoped_release released;
             r = sys_.run(m, rq, t0, t_end, x);
         }
-        py::dict out;
-        out["method"] = method;
-        out["stable"] = r.stable;
-        out["failure"] = r.failure;
-        out["steps"] = r.steps;
-        out["force_evaluations"] = r.force_evaluations;
-        out["final_state"] = array_of(r.final_state);
+        py::dict out = ending_of(method, r);
         out["max_energy_error"] = r.max_energy_error;
         out["seconds"] = r.seconds;
-        out["generic_path"] = r.generic;
         std::vector<double> series;
         for (const auto& [t, e] : r.energy_series) series.insert(series.end(), {t, e});
         py::array_t<double> s({py::ssize_t(r.energy_series.size()), py::ssize_t(2)});
@@ -193,19 +192,73 @@ public:
         return out;
     }
 
+    // What every run returns: how it ended.
+    static py::dict ending_of(const std::string& method, const run_result& r) {
+        py::dict out;
+        out["method"] = method;
+        out["stable"] = r.stable;
+        out["failure"] = r.failure;
+        out["steps"] = r.steps;
+        out["force_evaluations"] = r.force_evaluations;
+        out["final_state"] = array_of(r.final_state);
+        out["generic_path"] = r.generic;
+        return out;
+    }
+
+    // The request's step and tolerance; run(observe=False) takes nothing that watches the run.
+    static run_request rq_of(double dt, double tolerance, std::size_t energy_every, std::size_t trajectory_every,
+                             const py::object& times, bool timing) {
+        if (energy_every || trajectory_every || !times.is_none() || timing)
+            throw invalid_argument("observe=False runs with nothing watched; expected no energy_every, "
+                                   "trajectory_every, times or timing with it");
+        run_request rq;
+        rq.dt = dt;
+        rq.tolerance = tolerance;
+        return rq;
+    }
+
+    // One run with nothing observed, as the program's timed runs: the final
+    // state, steps, forces, the relative energy error at the end, and the
+    // wall time of the call inside C++ (the GIL released).
+    py::dict final_only(const method_spec& m, const std::string& method, run_request rq, double t0, double t_end,
+                        const std::vector<double>& x) const {
+        rq.observed = false;
+        rq.timing_repeats = 0;
+        run_result r;
+        double seconds = 0;
+        {
+            py::gil_scoped_release released;
+            const auto start = std::chrono::steady_clock::now();
+            r = sys_.run(m, rq, t0, t_end, x);
+            seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        }
+        py::dict out = ending_of(method, r);
+        out["seconds"] = seconds;
+        double error = -1;
+        if (r.stable && sys_.energy) {
+            const double e0 = sys_.energy(x), e1 = sys_.energy(r.final_state);
+            error = std::fabs(e1 - e0) / (e0 != 0 ? std::fabs(e0) : 1.0);
+        }
+        out["final_energy_error"] = error;
+        return out;
+    }
+
     // Many starts (rows of q then p) by one table over [t0, t_end] in steps
-    // of dt, on threads: the program's ensemble runner (ensembles.md).
+    // of dt, on threads: the program's ensemble runner (ensembles.md); for a
+    // Python force, the rows in lockstep, one call for all of them
+    // (force_callable.hpp).
     py::dict ensemble(const py::array_t<double, py::array::c_style | py::array::forcecast>& starts,
                       const std::string& method, double t_end, double dt, double t0, std::size_t sample_every,
                       bool megno, int threads) const {
-        if (!sys_.ensemble)
+        if (!sys_.ensemble && !callables_)
             throw invalid_argument(name_ + " is not a separable Hamiltonian H = T(p) + V(q); an ensemble runs splitting "
                                            "tables on one");
+        if (megno && callables_) throw invalid_argument("megno=True needs the force's derivative; a Python force gives none");
         const method_spec m = method_named(method);
         if (m.kind != method_kind::table || !m.coefficients || m.extrapolation_columns || m.compensated)
             throw invalid_argument("ensemble method '" + method + "'; expected a plain splitting table");
         const std::size_t width = sys_.x0.size();
-        if (starts.ndim() != 2 || std::size_t(starts.shape(1)) != width)
+        if (starts.ndim() != 2 || std::size_t(starts.shape(1)) != width || starts.shape(0) == 0)
             throw invalid_argument("starts: expected rows of " + std::to_string(width) + " numbers (q then p)");
         if (!(dt > 0 && std::isfinite(dt) && std::isfinite(t0) && std::isfinite(t_end) && t_end > t0))
             throw invalid_argument("dt = " + shortest(dt) + " over t = " + shortest(t0) + " .. " + shortest(t_end) +
@@ -226,9 +279,12 @@ public:
         rq.megno = megno;
         rq.threads = threads;
         std::vector<ensemble_row> rows;
+        double seconds = 0;
         {
-            py::gil_scoped_release released;
-            rows = sys_.ensemble(rq, x);
+            py::gil_scoped_release released;  // a Python force's calls take it back
+            const auto start = std::chrono::steady_clock::now();
+            rows = callables_ ? callable_ensemble(*callables_, x, rq) : sys_.ensemble(rq, x);
+            seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         }
         const auto length = static_cast<py::ssize_t>(count);
         py::array_t<bool> stable(length);
@@ -248,13 +304,36 @@ public:
         out["megno"] = indicator;
         out["final_states"] = final_states;
         out["steps"] = rq.steps;
+        out["seconds"] = seconds;  // the runs' wall time inside C++
         return out;
     }
 
 private:
     runnable_system sys_;
     std::string name_;
+    std::shared_ptr<const force_callables> callables_;  // a Python force's system only
 };
+
+system from_force(const py::object& force, const py::object& q0, const py::object& p0, const py::object& masses,
+                  const py::object& potential, const std::string& name) {
+    if (!PyCallable_Check(force.ptr())) throw py::type_error("force: expected a callable force(q) -> array like q");
+    if (!potential.is_none() && !PyCallable_Check(potential.ptr()))
+        throw py::type_error("potential: expected a callable potential(q) -> float, or None");
+    auto c = std::make_shared<force_callables>();
+    c->force = force;
+    c->potential = potential;
+    std::vector<double> x = vector_of(q0, "q0");
+    const std::vector<double> p = vector_of(p0, "p0");
+    if (x.size() != p.size() || x.empty())
+        throw invalid_argument("q0 has " + std::to_string(x.size()) + " numbers and p0 " + std::to_string(p.size()) +
+                               "; expected the same number, at least one");
+    c->masses = masses.is_none() ? std::vector<double>(x.size(), 1.0) : vector_of(masses, "masses");
+    if (c->masses.size() != x.size())
+        throw invalid_argument("masses has " + std::to_string(c->masses.size()) + " numbers; expected one per "
+                               "coordinate, " + std::to_string(x.size()));
+    x.insert(x.end(), p.begin(), p.end());
+    return system(std::move(c), std::move(x), name);
+}
 
 // A table of one's own (a scene's [[table]]): usable by its name in run()
 // and ensemble(), composable.
@@ -435,6 +514,12 @@ PYBIND11_MODULE(sympl, m) {
                     py::arg("momenta") = std::vector<std::string>{}, py::arg("period") = "",
                     py::arg("name") = "formulas",
                     "A system of formulas, as a scene's [system] table (docs/formulas.md)")
+        .def_static("from_force", &from_force, py::arg("force"), py::arg("q0"), py::arg("p0"),
+                    py::arg("masses") = py::none(), py::arg("potential") = py::none(),
+                    py::arg("name") = "python_force",
+                    "H = sum p^2 / (2 m) + V(q) with F = -dV/dq a Python callable force(q) (and V potential(q) for "
+                    "energies): the slow path, a call into Python per force (docs/python.md). In ensemble() all "
+                    "rows move in lockstep: q arrives as an array of shape (rows, n), one call per kick")
         .def_property_readonly("name", &sympl::app::python::system::name)
         .def_property_readonly("degrees_of_freedom", &sympl::app::python::system::degrees_of_freedom)
         .def_property_readonly("x0", &sympl::app::python::system::x0, "The initial state, q then p")
@@ -442,15 +527,17 @@ PYBIND11_MODULE(sympl, m) {
         .def("run", &sympl::app::python::system::run, py::arg("method"), py::arg("t_end"), py::arg("dt") = 0.0,
              py::arg("t0") = 0.0, py::arg("tolerance") = 1e-8, py::arg("x0") = py::none(), py::arg("energy") = true,
              py::arg("energy_every") = 0, py::arg("trajectory_every") = 0, py::arg("times") = py::none(),
-             py::arg("order") = 3, py::arg("timing") = false,
+             py::arg("order") = 3, py::arg("timing") = false, py::arg("observe") = true,
              "One run of a method by name: a dict of steps, force_evaluations, final_state, max_energy_error, "
              "energy_series (t, error rows), trajectory (t, q, p rows: every trajectory_every steps, or at `times` by "
-             "Hermite interpolation of order 3 or 5), seconds (timing=True), generic_path")
+             "Hermite interpolation of order 3 or 5), seconds (timing=True), generic_path. observe=False: one run "
+             "with nothing watched, at the program's timed speed: final_state, steps, force_evaluations, "
+             "final_energy_error, seconds (the call's wall time)")
         .def("ensemble", &sympl::app::python::system::ensemble, py::arg("starts"), py::arg("method"), py::arg("t_end"),
              py::arg("dt"), py::arg("t0") = 0.0, py::arg("sample_every") = 10, py::arg("megno") = false,
              py::arg("threads") = 0,
              "Rows of starts (q then p) run by one table on threads, the GIL released: stable, max_energy_error, "
-             "megno, final_states");
+             "megno, final_states, seconds (the runs' wall time inside C++)");
     py::class_<py_table>(m, "Table", "A splitting table of one's own, usable by its name (a scene's [[table]])")
         .def(py::init(&py_table::make), py::arg("name"), py::arg("kick"), py::arg("drift"), py::arg("order") = 0,
              py::arg("convention") = "kick-first")

@@ -114,6 +114,10 @@ public:
                           const std::vector<double>& x0) const {
         if (!compiled_has(Own, m) && generic_) return generic_(m, rq, t0, t_end, x0);
         run_result r;
+        if (!rq.observed && rq.timing_repeats == 0) {
+            final_only_run(m, rq, t0, t_end, x0, r);
+            return r;
+        }
         if (rq.observed) {
             observed_run(m, rq, t0, t_end, x0, r);
             if (!r.stable) return r;
@@ -131,6 +135,25 @@ public:
     }
 
 private:
+    // One run with nothing observed, as a timed one, keeping its end: the
+    // final state, steps and forces (Python's run(observe=False)). A state
+    // that stops being finite is caught where the driver checks it.
+    void final_only_run(const method_spec& m, const run_request& rq, double t0, double t_end,
+                        const std::vector<double>& x0, run_result& r) const {
+        State x = to_state<Dim>(x0);
+        try {
+            const auto [steps, forces] = run_method(run_context<Sys, Dim, Own>{sys_, m, rq, t0, t_end, x, {}});
+            r.steps = steps;
+            r.force_evaluations = forces;
+            r.final_state = to_vector(x);
+        } catch (const integration_error& e) {
+            r.stable = false;
+            r.blowup_step = e.step;
+            r.blowup_time = e.time;
+            r.failure = e.what();
+        }
+    }
+
     // The measured run: observed every step for energy, trajectory and blow-up.
     void observed_run(const method_spec& m, const run_request& rq, double t0, double t_end, const std::vector<double>& x0,
                       run_result& r) const {

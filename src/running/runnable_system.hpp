@@ -45,7 +45,8 @@ struct run_request {
     std::vector<double> output_times;
     int output_order = 3;
     std::ostream* trajectory = nullptr;
-    int timing_repeats = 1;               // wall-time measurements of unobserved runs (0: no timing)
+    int timing_repeats = 1;               // wall-time measurements of unobserved runs (0: no timing;
+                                          // with observed false: one unobserved run, its final state kept)
     double min_measurement = 2e-3;        // each measurement repeats the run until it lasts this long [s]
     // Called with the current time every 2^18 steps of the observed run
     // (a terminal's progress line); empty: nothing.
