@@ -157,7 +157,12 @@ struct reader {
         if (const toml::table* t = n.as_table()) {
             only_keys(*t, {"periods"}, "'" + key + "'");
             need_keys(n, *t, {"periods"}, key);
-            return t0 + positive(*t->get("periods"), key + ".periods") * period_for(n, key);
+            const double periods = positive(*t->get("periods"), key + ".periods"), period = period_for(n, key);
+            const double end = t0 + periods * period;
+            if (!std::isfinite(end) || !(end > t0))
+                fail(n, "'" + key + "': " + shortest(periods) + " periods of " + shortest(period) + " after t0 = " +
+                            shortest(t0) + " give t_end = " + shortest(end) + "; expected a finite time after t0");
+            return end;
         }
         return number(n, key);
     }

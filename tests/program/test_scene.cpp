@@ -382,6 +382,10 @@ TEST_CASE("scene: spans and steps in the system's characteristic period") {
               "scene.toml:3:19: unknown key 'per_priod' in 'dt'; did you mean 'per_period'?", 0) == 0);
     CHECK(error_of(head + "dt = 0.1\nt_end = {periods = -2}\n") ==
           "scene.toml:4:20: 't_end.periods' = -2; expected a finite number > 0");
+    // A count of periods past a double's range: refused at its key, with what it was made of.
+    CHECK(error_of(head + "dt = 0.1\nt_end = {periods = 1e308}\n").rfind(
+              "scene.toml:4:9: 't_end': 1e+308 periods of 6.283185307179586 after t0 = 0 give t_end = inf; expected "
+              "a finite time after t0", 0) == 0);
 }
 
 TEST_CASE("scene: a geometric sweep holds the decimals it meant, and one past a double's range is refused at its key") {
