@@ -84,9 +84,11 @@ void print_systems(bool json, const std::vector<std::string>& scene_files) {
         const std::vector<std::string> compiled = compiled_names(s);
         std::cout << "    compiled:";
         for (const auto& name : compiled) std::cout << " " << name;
+        const bool hamiltonian = s.build(with_defaults(s, {}, s.name)).hamiltonian;
         std::cout << (compiled.empty() ? " nothing" : "")
-                  << (s.build(with_defaults(s, {}, s.name)).hamiltonian ? "; any other method on the generic path\n"
-                                                                        : " (not Hamiltonian: no generic path)\n");
+                  << (!hamiltonian         ? " (not Hamiltonian: no generic path)\n"
+                      : compiled.empty()   ? "; every method on the generic path\n"
+                                           : "; any other method on the generic path\n");
     }
     std::cout << "\nmethod kinds:\n";
     const auto line = [](const char* label, const char* description) {

@@ -33,6 +33,7 @@ runnable_system formula_runnable(std::shared_ptr<const prepared_formulas> f, std
         g = app::detail::generic_separable(erased_separable::of(sys), r.energy);
     }
     r.form.quadratic_kinetic = !f->H && quadratic_in_p(*f->T);
+    r.compiled = {.kinds = {}, .classic = {}, .extrapolated = false};  // every method on the generic path
     r.x0 = std::move(x0);
     r.runner = std::move(g.run);
     r.reference_method = std::move(g.reference_method);

@@ -140,6 +140,7 @@ runnable_system callable_runnable(std::shared_ptr<const force_callables> c, std:
     // Splitting tables, rk4, the RKN pairs and Odeint; nothing that needs
     // the force's derivative or another scalar than double.
     r.form = {.separable_hamiltonian = true, .quadratic_kinetic = true};
+    r.compiled = {.kinds = {}, .classic = {}, .extrapolated = false};  // every method on the generic path
     app::detail::generic_parts g = app::detail::generic_separable(erased_separable::of(sys), r.energy);
     r.x0 = std::move(x0);
     r.runner = std::move(g.run);
