@@ -16,10 +16,10 @@ const std::vector<std::string>& function_names() {
     return names;
 }
 
-namespace {
-
 bool name_start(char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; }
 bool name_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
+
+namespace {
 
 // A character as an error shows it: printable, or its code.
 std::string shown(char c) {

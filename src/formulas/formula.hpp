@@ -51,6 +51,10 @@ struct node {
 
 const std::vector<std::string>& function_names();
 
+// What a name is made of: a letter or '_' first, then letters, digits, '_'.
+bool name_start(char c);
+bool name_char(char c);
+
 // The deepest nesting a formula may have, in the parser's levels (five per
 // bracket: about 200 brackets): the parser and the evaluation recurse once
 // per level, and no scene can make them recurse further.

@@ -1,6 +1,7 @@
 // A scene's [system] of formulas as a registry entry (formula_entry.hpp).
 #include "formulas/formula_entry.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <map>
@@ -105,8 +106,19 @@ system_entry formula_entry(formula_definition d) {
     e.build = [shared](const parameter_values& v) {
         std::vector<double> x0 = shared->q0;
         x0.insert(x0.end(), shared->p0.begin(), shared->p0.end());
-        return formula_runnable(prepare(shared->T, shared->V, shared->H, in_order(shared->known, v), x0), x0);
+        runnable_system r =
+            formula_runnable(prepare(shared->T, shared->V, shared->H, in_order(shared->known, v), x0), x0);
+        if (!shared->exact.empty())
+            r.exact = [shared, k = in_order(shared->known, v)](double t) {
+                std::vector<double> with_t = k, x;
+                with_t.push_back(t);
+                const Eigen::VectorXd none;
+                for (const auto& f : shared->exact) x.push_back(evaluate<double>(*f, with_t, none, none));
+                return x;
+            };
+        return r;
     };
+    e.exact = !shared->exact.empty();
     if (shared->period)
         e.period = {"the scene's period = " + shared->period->text, [shared](const parameter_values& v) {
                         const Eigen::VectorXd none;
@@ -187,11 +199,9 @@ namespace sympl::app::formulas {
 
 namespace {
 
+// A name a formula can use (formula.hpp), of at most 64 characters.
 bool is_name(const std::string& s) {
-    if (s.empty() || s.size() > 64 || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
-    for (char c : s)
-        if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_')) return false;
-    return true;
+    return !s.empty() && s.size() <= 64 && name_start(s[0]) && std::all_of(s.begin(), s.end(), name_char);
 }
 
 // A system's name: it names output files and rows.
@@ -200,6 +210,49 @@ bool is_system_name(const std::string& s) {
     for (char c : s)
         if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-')) return false;
     return true;
+}
+
+// The exact solution's formulas: one per component of q and of p, of t and
+// the parameters alone, and through the initial state at t = 0 (to 1e-9 of
+// each value's size: a mistyped solution is refused, not trusted).
+void read_exact(const formula_texts& t, formula_definition& d, std::string& definition) {
+    if (t.exact_q.empty() && t.exact_p.empty()) return;
+    const std::size_t n = t.q0.size();
+    for (const auto& [key, list] : {std::pair{"exact_q", &t.exact_q}, std::pair{"exact_p", &t.exact_p}})
+        if (list->size() != n)
+            throw formula_input_error(key, 0, std::string("'system.") + key + "' has " + std::to_string(list->size()) +
+                                                  " formulas for " + std::to_string(n) +
+                                                  " degrees of freedom; expected one each, in exact_q and exact_p");
+    names with_t = d.known;
+    if (std::find(with_t.parameters.begin(), with_t.parameters.end(), "t") != with_t.parameters.end() ||
+        std::find(with_t.q_names.begin(), with_t.q_names.end(), "t") != with_t.q_names.end() ||
+        std::find(with_t.p_names.begin(), with_t.p_names.end(), "t") != with_t.p_names.end())
+        throw formula_input_error("exact_q", 0, "the exact solution is a formula of t, and 't' names a parameter or a "
+                                                "coordinate; expected 't' free for the time");
+    with_t.parameters.push_back("t");
+    std::vector<double> at_start = d.parameter_values;
+    at_start.push_back(0.0);
+    const Eigen::VectorXd none;
+    for (std::size_t k = 0; k < 2 * n; ++k) {
+        const bool is_q = k < n;
+        const std::string key = std::string(is_q ? "exact_q" : "exact_p") + "[" + std::to_string(k % n) + "]";
+        const std::string& text = (is_q ? t.exact_q : t.exact_p)[k % n];
+        definition += "\n" + key + "=" + text;
+        try {
+            auto f = std::make_shared<formula>(parse(text, with_t));
+            if (f->uses_q || f->uses_p)
+                throw formula_error(1, key + " uses " + (f->uses_q ? "q" : "p") +
+                                           "; expected a formula of t and the parameters alone");
+            const double v = evaluate<double>(*f, at_start, none, none), x = is_q ? t.q0[k] : t.p0[k - n];
+            if (!(std::fabs(v - x) <= 1e-9 * std::max(1.0, std::fabs(x))))
+                throw formula_input_error(key, 0, key + " = " + shortest(v) + " at t = 0 where the initial " +
+                                                      (is_q ? "q" : "p") + "[" + std::to_string(k % n) + "] is " +
+                                                      shortest(x) + "; expected the solution through the initial state");
+            d.exact.push_back(std::move(f));
+        } catch (const formula_error& e) {
+            throw formula_input_error(key, e.column, e.what());
+        }
+    }
 }
 
 }  // namespace
@@ -305,6 +358,7 @@ const system_entry& define_formula_system(const formula_texts& t) {
         const double v = evaluate<double>(*d.period, d.parameter_values, none, none);
         if (!(v > 0)) throw formula_input_error("period", 0, "period = " + shortest(v) + "; expected a value > 0");
     }
+    read_exact(t, d, definition);
     for (std::size_t k = 0; k < d.known.parameters.size(); ++k)
         definition += "\n" + d.known.parameters[k] + "=" + shortest(d.parameter_values[k]);
     for (const auto& names : {d.known.q_names, d.known.p_names})

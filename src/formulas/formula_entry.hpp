@@ -24,6 +24,9 @@ struct formula_definition {
     std::vector<double> parameter_values;    // the defaults, in known.parameters' order
     std::vector<double> q0, p0;
     std::shared_ptr<const formula> period;   // of the parameters; null: none
+    // The exact solution through (q0, p0): q then p, formulas of t and the
+    // parameters ("t" the last parameter); empty: none.
+    std::vector<std::shared_ptr<const formula>> exact;
 };
 
 system_entry formula_entry(formula_definition d);
@@ -37,10 +40,13 @@ struct formula_texts {
     std::vector<std::pair<std::string, double>> parameters;
     std::vector<std::string> coordinates, momenta;  // empty: q[i] and p[i]; momenta empty: "p" + coordinate
     std::vector<double> q0, p0;
+    // The exact solution q(t), p(t) through the initial state, formulas of t
+    // and the parameters; both empty: none.
+    std::vector<std::string> exact_q, exact_p;
 };
 
 // What is wrong with one of formula_texts' values: its key ("T",
-// "parameters", "coordinates", "name", "initial"), the column inside a
+// "parameters", "coordinates", "name", "initial", "exact_q[2]"), the column inside a
 // formula (0: the value as a whole) and the message.
 struct formula_input_error : std::runtime_error {
     formula_input_error(std::string key, std::size_t column, const std::string& what)

@@ -116,7 +116,7 @@ public:
         detail::check_size(q.size(), f_->dimension);
         if (f.size() != q.size()) f.resize(q.size());
         if (f_->code) f_->of<S>().force(q.data(), f.data(), f_->parameters.data(), f_->dimension);
-        else sympl::detail::gradient([this](const auto& x) { return potential(x); }, q, f, S(-1));
+        else sympl::detail::gradient([&](const auto& x) { return this->potential(x); }, q, f, S(-1));
     }
     template <class Vec>
         requires compiled_scalar<Vec>
@@ -125,7 +125,7 @@ public:
         detail::check_size(p.size(), f_->dimension);
         if (v.size() != p.size()) v.resize(p.size());
         if (f_->code) f_->of<S>().velocity(p.data(), v.data(), f_->parameters.data(), f_->dimension);
-        else sympl::detail::gradient([this](const auto& x) { return kinetic(x); }, p, v);
+        else sympl::detail::gradient([&](const auto& x) { return this->kinetic(x); }, p, v);
     }
 
     const prepared_formulas& prepared() const { return *f_; }

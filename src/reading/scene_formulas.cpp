@@ -24,7 +24,8 @@ std::vector<std::string> strings(const reader& r, const toml::node& n, const std
 
 void read_formula_system(const reader& r, const toml::node& node, const toml::table& t, scene& s) {
     using namespace formulas;
-    r.only_keys(t, {"name", "T", "V", "H", "parameters", "coordinates", "momenta", "period"}, "[system]");
+    r.only_keys(t, {"name", "T", "V", "H", "parameters", "coordinates", "momenta", "period", "exact_q", "exact_p"},
+                "[system]");
     if (s.q0.empty())
         r.fail(node, "a [system] of formulas without [initial] q and p; expected them: they set the degrees of "
                      "freedom and the starting state");
@@ -47,6 +48,16 @@ void read_formula_system(const reader& r, const toml::node& node, const toml::ta
     if (const toml::node* period = t.get("period"))
         texts.period = period->is_string() ? r.string(*period, "system.period")
                                             : shortest(r.positive(*period, "system.period"));
+    for (const char* key : {"exact_q", "exact_p"})
+        if (const toml::node* e = t.get(key)) {
+            const toml::array* a = e->as_array();
+            if (!a) r.fail(*e, std::string("'system.") + key + "' must be an array of formulas of t, one per degree of freedom");
+            if (a->size() > std::size_t(largest_chain))
+                r.fail(*e, std::string("'system.") + key + "' has " + std::to_string(a->size()) + " formulas; expected "
+                           "one per degree of freedom");
+            auto& into = key[6] == 'q' ? texts.exact_q : texts.exact_p;
+            for (const auto& f : *a) into.push_back(r.string(f, std::string("system.") + key));
+        }
     texts.q0 = s.q0;
     texts.p0 = s.p0;
     try {
@@ -55,6 +66,12 @@ void read_formula_system(const reader& r, const toml::node& node, const toml::ta
         // The key's node (the table where it has none), and inside a formula
         // the column (the opening quote is the node's first column).
         const toml::node* at = e.key == "initial" ? nullptr : t.get(e.key);
+        // exact_q[k]: the k-th formula of the array.
+        if (const std::size_t open = e.key.find('['); open != std::string::npos)
+            if (const toml::node* list = t.get(e.key.substr(0, open)); list && list->as_array()) {
+                const std::size_t k = std::stoul(e.key.substr(open + 1));
+                if (k < list->as_array()->size()) at = list->as_array()->get(k);
+            }
         if (!at) r.fail(node, e.what());
         if (e.column == 0) r.fail(*at, e.what());
         toml::source_region where = at->source();

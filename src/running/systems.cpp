@@ -153,14 +153,15 @@ runnable_system make_system(const std::string& system, const parameter_values& g
     if (entry->kinetic_not_quadratic) p.form.quadratic_kinetic = false;
     // What the registry's values add to the type's answers (V < 0, T quadratic)
     // is in the form that runnable_system::run asks before the method runs.
-    if (!q0.empty()) {  // the scene's own initial state: the exact solution no longer applies
+    if (!q0.empty()) {  // the scene's own initial state: the exact solution no longer applies, unless it is x0
         if (q0.size() != p.degrees_of_freedom || p0.size() != q0.size())
             throw invalid_argument(where + ": initial q has " + std::to_string(q0.size()) + " and p " +
                                    std::to_string(p0.size()) + " values; " + system + " expects " +
                                    std::to_string(p.degrees_of_freedom) + " each");
-        p.x0 = q0;
-        p.x0.insert(p.x0.end(), p0.begin(), p0.end());
-        p.exact = nullptr;
+        std::vector<double> x0 = q0;
+        x0.insert(x0.end(), p0.begin(), p0.end());
+        if (x0 != p.x0) p.exact = nullptr;
+        p.x0 = std::move(x0);
     }
     return p;
 }

@@ -282,4 +282,49 @@ TEST_CASE("formula systems: a scene's mistakes named at file:line:col") {
     CHECK(with("x^2*y", "2*x^2*y").find("defined differently by another scene") != std::string::npos);
 }
 
+TEST_CASE("formula systems: an exact solution as formulas of t serves as the reference, and is checked at t = 0") {
+    const std::string oscillator = R"toml(methods = ["leapfrog_kdk"]
+dt = 0.01
+t_end = 10
+[system]
+name = "oscillator_of_formulas"
+parameters = {w = 2.0}
+T = "p[0]^2 / 2"
+V = "w^2 * q[0]^2 / 2"
+exact_q = ["cos(w*t)"]
+exact_p = ["-w*sin(w*t)"]
+[initial]
+q = [1.0]
+p = [0.0]
+)toml";
+    const scene s = parse_scene(oscillator, "osc.toml");
+    const runnable_system sys = make_system(s.system, s.parameters, s.q0, s.p0, s.source);
+    REQUIRE(sys.exact);
+    const std::vector<double> at = sys.exact(0.7);
+    CHECK(at[0] == std::cos(2.0 * 0.7));
+    CHECK(at[1] == -2.0 * std::sin(2.0 * 0.7));
+    // Leapfrog's phase error against the exact solution: second order, so a
+    // tenth of the step gives a hundredth of the error (within 0.15 of the order).
+    const method_spec m = *resolve_method("leapfrog_kdk", {});
+    const auto error_at = [&](double dt) {
+        const run_result r = sys.run(m, request(dt), 0, 10, sys.x0);
+        return relative_difference(r.final_state, sys.exact(10));
+    };
+    CHECK(std::log10(error_at(0.01) / error_at(0.001)) == doctest::Approx(2).epsilon(0.075));
+    const auto with = [&](const std::string& from, const std::string& to) {
+        std::string text = oscillator;
+        text.replace(text.find(from), from.size(), to);
+        return scene_error_of(text);
+    };
+    CHECK(with("cos(w*t)", "sin(w*t)") == "f.toml:9:12: exact_q[0] = 0 at t = 0 where the initial q[0] is 1; "
+                                          "expected the solution through the initial state");
+    CHECK(with("cos(w*t)", "cos(w*s)").find("f.toml:9:19: system.exact_q[0]: unknown name 's'") == 0);
+    CHECK(with("cos(w*t)", "cos(q[0]*t)").find("exact_q[0] uses q; expected a formula of t and the parameters") !=
+          std::string::npos);
+    CHECK(with("exact_p = [\"-w*sin(w*t)\"]", "exact_p = []").find("'system.exact_p' has 0 formulas for 1") !=
+          std::string::npos);
+    CHECK(with("parameters = {w = 2.0}", "parameters = {w = 2.0, t = 1}").find("'t' free for the time") !=
+          std::string::npos);
+}
+
 }  // namespace test_program_test_formula_scene
