@@ -19,6 +19,8 @@
 #include <string>
 #include <vector>
 
+#include <toml++/toml.h>
+
 #include <sympl/methods/catalog.hpp>
 
 #include "commands/check_table.hpp"
@@ -205,6 +207,34 @@ public:
         return out;
     }
 
+    // The upward crossings of q[0] = 0 (a Poincare section) of `steps` steps
+    // of dt by a splitting table, as rows of q then p (interpolated to the
+    // plane, poincare_section.hpp).
+    py::array_t<double> section(const std::string& method, double dt, std::size_t steps, const py::object& x0) const {
+        if (!sys_.section)
+            throw invalid_argument(name_ + " has no Poincare section here; expected a separable Hamiltonian H = T(p) + "
+                                           "V(q)");
+        const method_spec m = method_named(method);
+        if (m.kind != method_kind::table || !m.coefficients || m.extrapolation_columns || m.compensated)
+            throw invalid_argument("section method '" + method + "'; expected a plain splitting table");
+        if (!(dt > 0 && std::isfinite(dt))) throw invalid_argument("dt = " + shortest(dt) + "; expected a finite step > 0");
+        if (steps == 0 || double(steps) > default_max_steps)
+            throw invalid_argument("steps = " + std::to_string(steps) + "; expected 1 .. " + shortest(default_max_steps));
+        const std::vector<double> x = x0.is_none() ? sys_.x0 : vector_of(x0, "x0");
+        if (x.size() != sys_.x0.size())
+            throw invalid_argument("x0 has " + std::to_string(x.size()) + " numbers; expected q then p, " +
+                                   std::to_string(sys_.x0.size()));
+        std::vector<std::vector<double>> crossings;
+        {
+            py::gil_scoped_release released;
+            crossings = sys_.section(*m.coefficients, dt, steps, x);
+        }
+        py::array_t<double> out({py::ssize_t(crossings.size()), py::ssize_t(x.size())});
+        for (std::size_t i = 0; i < crossings.size(); ++i)
+            std::copy(crossings[i].begin(), crossings[i].end(), out.mutable_data(py::ssize_t(i), 0));
+        return out;
+    }
+
     // The request's step and tolerance; run(observe=False) takes nothing that watches the run.
     static run_request rq_of(double dt, double tolerance, std::size_t energy_every, std::size_t trajectory_every,
                              const py::object& times, bool timing) {
@@ -381,9 +411,11 @@ py::object checked_table(const std::vector<double>& kick, const std::vector<doub
 system from_formulas(const std::string& T, const std::string& V, const std::string& H, const py::object& q0,
                      const py::object& p0, const std::map<std::string, double>& parameters,
                      const std::vector<std::string>& coordinates, const std::vector<std::string>& momenta,
-                     const std::string& period, const std::string& name) {
+                     const std::string& period, const std::string& name, const std::vector<std::string>& exact_q,
+                     const std::vector<std::string>& exact_p) {
     formulas::formula_texts t;
     t.name = name, t.T = T, t.V = V, t.H = H, t.period = period;
+    t.exact_q = exact_q, t.exact_p = exact_p;
     t.parameters.assign(parameters.begin(), parameters.end());
     t.coordinates = coordinates, t.momenta = momenta;
     t.q0 = vector_of(q0, "q0");
@@ -414,23 +446,11 @@ py::list systems_list() {
 
 // The report over scene files (none: the built-in set), written to `out` as
 // the program writes it; its work-precision rows returned as columns.
-py::dict report(const std::vector<std::string>& scenes, const std::string& out, bool quick, bool plots, int threads) {
-    report_options o;
-    o.out_dir = out;
-    o.quick = quick;
-    o.plots = plots;
-    o.threads = threads;
-    std::ostringstream printed;
-    {
-        py::gil_scoped_release released;
-        std::vector<scene> s;
-        for (const auto& f : scenes) s.push_back(load_scene(f, quick));
-        o.studies = scenes.empty();
-        if (s.empty()) s = default_scenes(quick);
-        run_report(s, o, printed);
-    }
-    // work_precision.csv, column by column: numbers as float arrays, the rest as lists of strings.
-    std::ifstream in(out + "/work_precision.csv");
+// A CSV file the report wrote, column by column: numbers as float arrays
+// (an empty field NaN), the rest as lists of strings (a field in quotes may
+// hold commas).
+py::dict csv_columns(const std::string& path) {
+    std::ifstream in(path);
     std::string line;
     std::getline(in, line);
     std::vector<std::string> header;
@@ -454,21 +474,92 @@ py::dict report(const std::vector<std::string>& scenes, const std::string& out, 
     py::dict columns;
     for (std::size_t k = 0; k < header.size(); ++k) {
         std::vector<double> numbers;
-        bool numeric = true;
+        bool numeric = false;  // every field a number or empty (NaN), at least one a number
         for (const auto& c : cells[k]) {
+            if (c.empty()) {
+                numbers.push_back(std::nan(""));
+                continue;
+            }
             char* end = nullptr;
             const double v = std::strtod(c.c_str(), &end);
-            if (c.empty() || *end) {
-                numeric = false;
-                break;
-            }
+            numeric = *end == '\0';
+            if (!numeric) break;
             numbers.push_back(v);
         }
         if (numeric) columns[py::str(header[k])] = array_of(numbers);
         else columns[py::str(header[k])] = cells[k];
     }
+    return columns;
+}
+
+// A scene given as a dict, as its TOML file would hold it: tables, arrays,
+// strings, numbers and booleans, nested at most 16 deep.
+toml::table toml_of(const py::dict& d, const std::string& where, int depth);
+toml::array toml_array_of(const py::handle& list, const std::string& where, int depth);
+
+void put(const py::handle& v, const std::string& where, int depth, const auto& add) {
+    if (depth > 16) throw invalid_argument(where + ": nested deeper than 16; expected a scene's tables and arrays");
+    if (py::isinstance<py::bool_>(v)) add(v.cast<bool>());
+    else if (py::isinstance<py::int_>(v)) add(v.cast<std::int64_t>());
+    else if (py::isinstance<py::float_>(v)) add(v.cast<double>());
+    else if (py::isinstance<py::str>(v)) add(v.cast<std::string>());
+    else if (py::isinstance<py::dict>(v)) add(toml_of(v.cast<py::dict>(), where, depth + 1));
+    else if (py::isinstance<py::list>(v) || py::isinstance<py::tuple>(v)) add(toml_array_of(v, where, depth + 1));
+    else if (py::hasattr(v, "tolist")) put(v.attr("tolist")(), where, depth, add);  // numpy arrays and scalars
+    else
+        throw py::type_error(where + ": a value of type " + std::string(py::str(v.get_type().attr("__name__"))) +
+                             "; expected a table (dict), an array (list), a string, a number or a boolean");
+}
+toml::array toml_array_of(const py::handle& list, const std::string& where, int depth) {
+    toml::array a;
+    std::size_t k = 0;
+    for (const py::handle item : list)
+        put(item, where + "[" + std::to_string(k++) + "]", depth, [&](auto&& x) { a.push_back(std::move(x)); });
+    return a;
+}
+toml::table toml_of(const py::dict& d, const std::string& where, int depth) {
+    toml::table t;
+    for (const auto& [key, value] : d) {
+        if (!py::isinstance<py::str>(key)) throw py::type_error(where + ": a key that is not a string; expected names");
+        const std::string name = key.cast<std::string>();
+        put(value, where + "['" + name + "']", depth, [&](auto&& x) { t.insert_or_assign(name, std::move(x)); });
+    }
+    return t;
+}
+
+py::dict report(const py::list& scene_list, const std::string& out, bool quick, bool plots, int threads) {
+    // Files by path, dicts as their TOML text (the program's reader checks both alike).
+    std::vector<std::pair<std::string, std::string>> scenes;  // (path, "") or (name, text)
+    for (std::size_t k = 0; k < scene_list.size(); ++k) {
+        const py::handle item = scene_list[k];
+        if (py::isinstance<py::str>(item)) {
+            scenes.emplace_back(item.cast<std::string>(), "");
+        } else if (py::isinstance<py::dict>(item)) {
+            const std::string where = "scenes[" + std::to_string(k) + "]";
+            std::ostringstream text;
+            text << toml_of(item.cast<py::dict>(), where, 0);
+            scenes.emplace_back(where, text.str());
+        } else {
+            throw py::type_error("scenes[" + std::to_string(k) + "]: expected a scene file's path or a dict");
+        }
+    }
+    report_options o;
+    o.out_dir = out;
+    o.quick = quick;
+    o.plots = plots;
+    o.threads = threads;
+    std::ostringstream printed;
+    {
+        py::gil_scoped_release released;
+        std::vector<scene> s;
+        for (const auto& [f, text] : scenes) s.push_back(text.empty() ? load_scene(f, quick) : parse_scene(text, f, quick));
+        o.studies = scenes.empty();
+        if (s.empty()) s = default_scenes(quick);
+        run_report(s, o, printed);
+    }
     py::dict result;
-    result["work_precision"] = columns;
+    result["work_precision"] = csv_columns(out + "/work_precision.csv");
+    result["time_to_accuracy"] = csv_columns(out + "/time_to_accuracy.csv");
     result["summary"] = printed.str();
     result["directory"] = out;
     return result;
@@ -512,7 +603,8 @@ PYBIND11_MODULE(sympl, m) {
                     py::arg("q0"), py::arg("p0"), py::arg("parameters") = std::map<std::string, double>{},
                     py::arg("coordinates") = std::vector<std::string>{},
                     py::arg("momenta") = std::vector<std::string>{}, py::arg("period") = "",
-                    py::arg("name") = "formulas",
+                    py::arg("name") = "formulas", py::arg("exact_q") = std::vector<std::string>{},
+                    py::arg("exact_p") = std::vector<std::string>{},
                     "A system of formulas, as a scene's [system] table (docs/formulas.md)")
         .def_static("from_force", &from_force, py::arg("force"), py::arg("q0"), py::arg("p0"),
                     py::arg("masses") = py::none(), py::arg("potential") = py::none(),
@@ -533,6 +625,10 @@ PYBIND11_MODULE(sympl, m) {
              "Hermite interpolation of order 3 or 5), seconds (timing=True), generic_path. observe=False: one run "
              "with nothing watched, at the program's timed speed: final_state, steps, force_evaluations, "
              "final_energy_error, seconds (the call's wall time)")
+        .def("section", &sympl::app::python::system::section, py::arg("method"), py::arg("dt"), py::arg("steps"),
+             py::arg("x0") = py::none(),
+             "The upward crossings of q[0] = 0 (a Poincare section) of `steps` steps of dt by a splitting table: "
+             "rows of q then p")
         .def("ensemble", &sympl::app::python::system::ensemble, py::arg("starts"), py::arg("method"), py::arg("t_end"),
              py::arg("dt"), py::arg("t0") = 0.0, py::arg("sample_every") = 10, py::arg("megno") = false,
              py::arg("threads") = 0,
@@ -557,8 +653,8 @@ PYBIND11_MODULE(sympl, m) {
              }, py::arg("other"), py::arg("fraction") = 0.5, "This table for `fraction` of the step, then `other`");
     m.def("check_table", &checked_table, py::arg("kick"), py::arg("drift"), py::arg("convention") = "kick-first",
           "The order conditions and the measured order of coefficients, as `sympl check-table --json`");
-    m.def("report", &report, py::arg("scenes") = std::vector<std::string>{}, py::arg("out") = "sympl-report",
+    m.def("report", &report, py::arg("scenes") = py::list(), py::arg("out") = "sympl-report",
           py::arg("quick") = true, py::arg("plots") = false, py::arg("threads") = 0,
-          "The work-precision report over scene files (none: the built-in set), written to `out` as `sympl report` "
-          "writes it; returns its work_precision.csv as columns");
+          "The work-precision report over scenes, files or dicts as their TOML holds them (none: the built-in set), "
+          "written to `out` as `sympl report` writes it; returns work_precision.csv and time_to_accuracy.csv as columns");
 }

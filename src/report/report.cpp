@@ -80,9 +80,12 @@ private:
 
 void write_intro(std::ostream& md, const report_options& options, int rounds, const exchange& ranks) {
     md << "# sympl work-precision report\n\n"
-       << (options.quick ? "Quick run (`--quick`): spans of 1e3 characteristic periods (1e4 in the full report), "
-                           "shorter sweeps.\n\n"
-                         : "Spans of 1e4 characteristic periods (each scene's file says which period and how many).\n\n")
+       << (!options.studies ? std::string(options.quick ? "Quick run (`--quick`): each scene's [quick] span and sweeps "
+                                                           "where it has them.\n\n"
+                                                         : "Spans and sweeps as each scene sets them.\n\n")
+           : options.quick ? "Quick run (`--quick`): spans of 1e3 characteristic periods (1e4 in the full report), "
+                             "shorter sweeps.\n\n"
+                           : "Spans of 1e4 characteristic periods (each scene's file says which period and how many).\n\n")
        << "Two measures, each with its own table and figure: the final error, max |x - x_ref| / max |x_ref| at t_end "
           "against the exact solution or a Sofroniou-Spaletta 10 reference in long double (its own error in "
           "work_precision.csv), for regular motion; and the largest relative energy error over the run, for every "

@@ -88,8 +88,9 @@ def test_the_walk_through_of_docs_python_md_runs_as_written(tmp_path, monkeypatc
     blocks = re.findall(r"```python\n(.*?)```", page.read_text(), re.S)
     assert blocks
     monkeypatch.chdir(tmp_path)
+    walk = {}  # one namespace, as a notebook runs its cells in turn
     for block in blocks:
-        exec(compile(block, str(page), "exec"), {})
+        exec(compile(block, str(page), "exec"), walk)
 
 
 def test_a_table_of_ones_own_runs_by_name_and_composes_to_its_order():
@@ -228,3 +229,40 @@ def test_a_python_force_is_checked_and_its_errors_reach_python():
         moving.run("leapfrog_kdk", t_end=1.0, dt=0.01)
     with pytest.raises(ValueError, match="megno=True needs the force's derivative"):
         moving.ensemble(np.zeros((2, 2)), "leapfrog_kdk", t_end=1.0, dt=0.1, megno=True)
+
+
+def test_a_formula_system_may_carry_its_exact_solution():
+    osc = sympl.System.from_formulas(T="p[0]^2 / 2", V="w^2 * q[0]^2 / 2", q0=[1.0], p0=[0.0],
+                                     parameters={"w": 2.0}, exact_q=["cos(w*t)"], exact_p=["-w*sin(w*t)"],
+                                     name="oscillator_exact")
+    r = osc.run("leapfrog_kdk", t_end=10.0, dt=0.001)
+    assert abs(r["final_state"][0] - math.cos(20.0)) < 1e-4
+    with pytest.raises(ValueError, match=r"exact_q\[0\] = 0 at t = 0 where the initial q\[0\] is 1"):
+        sympl.System.from_formulas(T="p[0]^2 / 2", V="q[0]^2 / 2", q0=[1.0], p0=[0.0], exact_q=["sin(t)"],
+                                   exact_p=["cos(t)"], name="oscillator_wrong")
+
+
+def test_a_poincare_section_lies_on_the_plane_and_keeps_the_energy():
+    hh = sympl.System("henon_heiles")
+    cut = hh.section("blanes_moan_s6", dt=0.05, steps=100_000)
+    assert cut.shape[1] == 4 and cut.shape[0] > 100
+    assert np.all(np.abs(cut[:, 0]) < 1e-12)   # x = 0
+    assert np.all(cut[:, 2] > 0)               # crossing upwards: dx/dt = px > 0
+    e0 = hh.energy(hh.x0)
+    # Each crossing is read off the step's cubic Hermite interpolant, within
+    # dt^4/384 max|x''''| of the orbit per component (poincare_section.hpp):
+    # with |x''''| and |grad H| at most 2 on this orbit, its energy within
+    # 4 * 2 * 2 dt^4/384 of the start (the sixth-order steps add 1e-9).
+    dt = 0.05
+    assert max(abs(hh.energy(row) - e0) for row in cut) <= 16 * dt**4 / 384
+    with pytest.raises(ValueError, match="section method 'rk4'; expected a plain splitting table"):
+        hh.section("rk4", dt=0.05, steps=10)
+
+
+def test_a_scene_may_be_a_dict_and_its_mistakes_are_named():
+    scene = {"name": "osc_dict", "system": "harmonic_oscillator", "methods": ["leapfrog_kdk", "dprkn8"],
+             "t_end": 20.0, "dt": [0.1, 0.05]}
+    with pytest.raises(TypeError, match=r"scenes\[0\]\['dt'\]\[1\]: a value of type set"):
+        sympl.report([dict(scene, dt=[0.1, {0.05}])], out="unused")
+    with pytest.raises(ValueError, match=r"scenes\[0\]:.*unknown key 'tend'"):
+        sympl.report([dict(scene, tend=1.0)], out="unused")
