@@ -11,10 +11,12 @@
 
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -28,6 +30,7 @@
 #include "formulas/formula_entry.hpp"
 #include "python/force_callable.hpp"
 #include "methods/method_kinds.hpp"
+#include "output/checkpoint.hpp"
 #include "output/format.hpp"
 #include "reading/near_names.hpp"
 #include "reading/scene.hpp"
@@ -117,6 +120,7 @@ public:
         if (q.empty() != p.empty()) throw invalid_argument("give both q0 and p0, or neither (the system's default)");
         sys_ = make_system(name, parameters, q, p, "python");
         name_ = name;
+        for (const auto& [key, value] : parameters) identity_ += key + "=" + shortest(value) + ";";
     }
 
     // A system whose force is a Python callable (force_callable.hpp).
@@ -137,7 +141,8 @@ public:
 
     py::dict run(const std::string& method, double t_end, double dt, double t0, double tolerance, const py::object& x0,
                  bool energy, std::size_t energy_every, std::size_t trajectory_every, const py::object& times,
-                 int order, bool timing, bool observe) const {
+                 int order, bool timing, bool observe, const std::string& checkpoint, std::size_t checkpoint_every,
+                 bool resume) const {
         const method_spec m = method_named(method);
         std::vector<double> x = x0.is_none() ? sys_.x0 : vector_of(x0, "x0");
         if (x.size() != sys_.x0.size())
@@ -154,6 +159,8 @@ public:
                                    shortest(default_max_steps) + " (a larger dt or a shorter span)");
         if (adaptive_kind && !(tolerance > 0 && tolerance < 1))
             throw invalid_argument("tolerance = " + shortest(tolerance) + "; expected a value in (0, 1)");
+        if (!observe && (!checkpoint.empty() || checkpoint_every || resume))
+            throw invalid_argument("observe=False with checkpoints; expected checkpoints of an observed run");
         if (!observe) return final_only(m, method, rq_of(dt, tolerance, energy_every, trajectory_every, times, timing),
                                         t0, t_end, x);
         run_request rq = rq_of(dt, tolerance, 0, 0, py::none(), false);
@@ -177,6 +184,9 @@ public:
             rq.trajectory = &trajectory;
         }
         if (trajectory_every) rq.trajectory = &trajectory;
+        std::optional<checkpoint_record> from;
+        if (!checkpoint.empty() || checkpoint_every || resume)
+            checkpointed(m, method, rq, t0, t_end, x, checkpoint, checkpoint_every, resume, from);
         run_result r;
         {
             py::gil_scoped_release released;
@@ -192,6 +202,43 @@ public:
         out["energy_series"] = s;
         out["trajectory"] = rows_of(trajectory.str(), 1 + sys_.x0.size());
         return out;
+    }
+
+    // A run's checkpoints (checkpoint.hpp): written to `file` every `every`
+    // steps, and with `resume` the run continues from the file where it
+    // exists, bit for bit, once the file is held to this run (its system,
+    // start, span, method and step: the identity) and its fields checked.
+    void checkpointed(const method_spec& m, const std::string& method, run_request& rq, double t0, double t_end,
+                      const std::vector<double>& x, const std::string& file, std::size_t every, bool resume,
+                      std::optional<checkpoint_record>& from) const {
+        if (file.empty() || every == 0)
+            throw invalid_argument("checkpoint = '" + file + "', checkpoint_every = " + std::to_string(every) +
+                                   "; expected a file name and a number of steps > 0 (resume too)");
+        if (const std::string why = why_not_resumable(m); !why.empty()) throw invalid_argument(why);
+        if (rq.trajectory || rq.energy_series_every)
+            throw invalid_argument("checkpoints with trajectory_every, times or energy_every; expected checkpoints of "
+                                   "a run whose results are its final state and largest energy error");
+        std::string identity = "python\n" + name_ + "\n" + identity_ + "\n" + shortest(t0) + "\n" + shortest(t_end) +
+                               "\n" + shortest(rq.tolerance);
+        for (double v : x) identity += "\n" + shortest(v);
+        const std::string hash = fnv1a_hex(identity);
+        if (resume && std::filesystem::exists(file)) {
+            try {
+                from = read_checkpoint(file, hash, method, rq.dt);
+                check_checkpoint_fields(*from, file, x.size(), t0, t_end,
+                                        steps_in_physical_time(m) && m.extrapolation_columns == 0);
+            } catch (const sympl::error& e) {
+                throw invalid_argument(e.what());
+            }
+            rq.checkpoint.resume = &*from;
+        }
+        rq.checkpoint.every_steps = every;
+        rq.checkpoint.save = [file, hash, method, dt = rq.dt](checkpoint_record& record) {
+            record.scene_hash = hash;
+            record.method = method;
+            record.dt = dt;
+            write_checkpoint(file, record);
+        };
     }
 
     // What every run returns: how it ended.
@@ -341,6 +388,7 @@ public:
 private:
     runnable_system sys_;
     std::string name_;
+    std::string identity_;  // the parameters as given, for a checkpoint's identity
     std::shared_ptr<const force_callables> callables_;  // a Python force's system only
 };
 
@@ -620,11 +668,14 @@ PYBIND11_MODULE(sympl, m) {
              py::arg("t0") = 0.0, py::arg("tolerance") = 1e-8, py::arg("x0") = py::none(), py::arg("energy") = true,
              py::arg("energy_every") = 0, py::arg("trajectory_every") = 0, py::arg("times") = py::none(),
              py::arg("order") = 3, py::arg("timing") = false, py::arg("observe") = true,
+             py::arg("checkpoint") = "", py::arg("checkpoint_every") = 0, py::arg("resume") = false,
              "One run of a method by name: a dict of steps, force_evaluations, final_state, max_energy_error, "
              "energy_series (t, error rows), trajectory (t, q, p rows: every trajectory_every steps, or at `times` by "
              "Hermite interpolation of order 3 or 5), seconds (timing=True), generic_path. observe=False: one run "
              "with nothing watched, at the program's timed speed: final_state, steps, force_evaluations, "
-             "final_energy_error, seconds (the call's wall time)")
+             "final_energy_error, seconds (the call's wall time). checkpoint='file', checkpoint_every=N: the "
+             "run's state written every N steps (the program's checkpoints); resume=True continues from the file "
+             "where it exists, bit for bit")
         .def("section", &sympl::app::python::system::section, py::arg("method"), py::arg("dt"), py::arg("steps"),
              py::arg("x0") = py::none(),
              "The upward crossings of q[0] = 0 (a Poincare section) of `steps` steps of dt by a splitting table: "

@@ -266,3 +266,23 @@ def test_a_scene_may_be_a_dict_and_its_mistakes_are_named():
         sympl.report([dict(scene, dt=[0.1, {0.05}])], out="unused")
     with pytest.raises(ValueError, match=r"scenes\[0\]:.*unknown key 'tend'"):
         sympl.report([dict(scene, tend=1.0)], out="unused")
+
+
+def test_a_run_resumes_from_its_checkpoint_bit_for_bit(tmp_path):
+    hh = sympl.System("henon_heiles")
+    file = str(tmp_path / "hh.checkpoint")
+    # 1000 steps, a checkpoint every 300: the file holds step 900 at the end.
+    whole = hh.run("blanes_moan_s6", t_end=50.0, dt=0.05, checkpoint=file, checkpoint_every=300)
+    again = hh.run("blanes_moan_s6", t_end=50.0, dt=0.05, checkpoint=file, checkpoint_every=300, resume=True)
+    assert whole["steps"] == again["steps"] == 1000
+    assert np.array_equal(whole["final_state"], again["final_state"])
+    assert again["max_energy_error"] == whole["max_energy_error"]
+    # A run that is not this one is refused, with what differs.
+    with pytest.raises(ValueError, match="not resumed from"):
+        hh.run("blanes_moan_s6", t_end=50.0, dt=0.025, checkpoint=file, checkpoint_every=300, resume=True)
+    with pytest.raises(ValueError, match="not resumed from"):
+        hh.run("blanes_moan_s6", t_end=60.0, dt=0.05, checkpoint=file, checkpoint_every=300, resume=True)
+    with pytest.raises(ValueError, match="expected a file name and a number of steps > 0"):
+        hh.run("blanes_moan_s6", t_end=50.0, dt=0.05, checkpoint=file)
+    with pytest.raises(ValueError, match="observe=False with checkpoints"):
+        hh.run("blanes_moan_s6", t_end=50.0, dt=0.05, checkpoint=file, checkpoint_every=10, observe=False)
