@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
+#include <new>
 #include <limits>
 #include <string>
 
@@ -31,6 +33,27 @@ TEST_CASE("splitting_stepper: fixed-size and dynamic states give identical traje
         CHECK(a.q[1] == b.q[1]);
         CHECK(a.p[0] == b.p[0]);
         CHECK(a.p[1] == b.p[1]);
+    }
+}
+
+TEST_CASE("splitting_stepper: a fixed-size state's unused residuals are handed on as zeros, not stray bits") {
+    // The stepper built in memory filled with 0xff bytes (a NaN in every
+    // double): a residual left uninitialised would reach memory(), and a
+    // checkpoint, as NaN.
+    using Fixed = phase_space<double, 2>;
+    using stepper = splitting_stepper<hamiltonians::kepler, Fixed>;
+    alignas(stepper) unsigned char bytes[sizeof(stepper)];
+    std::memset(bytes, 0xff, sizeof bytes);
+    for (const table& t : {method("leapfrog_kdk"), force_gradient_method("chin_4a")}) {
+        CAPTURE(t.name());
+        stepper* s = new (bytes) stepper({}, t);
+        Fixed x = hamiltonians::kepler::initial_state(0.6);
+        s->steps(x, 0.01, 10);
+        const auto m = s->memory();
+        CHECK(m.q_error.isZero());
+        CHECK(m.p_error.isZero());
+        s->~stepper();
+        std::memset(bytes, 0xff, sizeof bytes);
     }
 }
 
