@@ -29,26 +29,49 @@ std::vector<work_point> curve_of(const std::vector<report_row>& rows, const scen
     std::vector<work_point> curve;
     for (const report_row& r : rows)
         if (&r.method() == &m && r.r.stable && measured(r, by) >= 0 && measured(r, by) < order_one)
-            curve.push_back({r.r.seconds, measured(r, by), r.run->setting()});
+            curve.push_back({r.r.seconds, measured(r, by), r.run->setting(), r.r.seconds_min, r.r.seconds_max});
     return curve;
 }
 
-// The fastest method of a group (sympl's or Odeint's) at one level.
+// Two times closer than this factor are a tie: on an idle machine two runs of
+// one program put 95% of the report's timed rows within 3% of each other and
+// 99% within 8% (docs/scenes.md, "Ties"), so which of two methods 5% apart
+// comes first is not a property of the methods. On a busy machine the timing
+// rounds themselves say how far apart they spread: b is tied with a faster a
+// when b's fastest round is faster than a's slowest, too.
+constexpr double tie_factor = 1.05;
+
+bool tied(const time_to_accuracy& faster, const time_to_accuracy& slower) {
+    return slower.seconds <= faster.seconds * tie_factor || slower.seconds_min <= faster.seconds_max;
+}
+
+// The fastest method of a group (sympl's or Odeint's) at one level, and the
+// runner-up when it is within a tie of it.
 struct verdict {
     const method_spec* method = nullptr;
     std::optional<time_to_accuracy> reach;
-    double best_error = HUGE_VAL;  // the smallest error any of the group reached
+    const method_spec* tied = nullptr;  // the runner-up, when within tie_factor
+    double best_error = HUGE_VAL;       // the smallest error any of the group reached
 };
 
 verdict fastest(const std::vector<report_row>& rows, const scene& s, double level, bool odeint, error_measure by) {
     verdict v;
+    const method_spec* second = nullptr;
+    std::optional<time_to_accuracy> second_reach;
     for (const scene_method& m : s.methods) {
         if (entry_of(m.kind).odeint != odeint) continue;
         const auto curve = curve_of(rows, m, by);
         for (const work_point& p : curve) v.best_error = std::min(v.best_error, p.error);
         const auto reach = time_to_reach(curve, level);
-        if (reach && (!v.reach || reach->seconds < v.reach->seconds)) v.method = &m, v.reach = reach;
+        if (!reach) continue;
+        if (!v.reach || reach->seconds < v.reach->seconds) {
+            if (v.reach) second = v.method, second_reach = v.reach;
+            v.method = &m, v.reach = reach;
+        } else if (!second_reach || reach->seconds < second_reach->seconds) {
+            second = &m, second_reach = reach;
+        }
     }
+    if (second && tied(*v.reach, *second_reach)) v.tied = second;
     return v;
 }
 
@@ -195,40 +218,56 @@ void fastest_table(const std::vector<report_row>& rows, const std::vector<run_pl
           << std::right << std::setw(10) << "time [s]" << "  " << std::left << std::setw(24) << "fastest Odeint" << std::right
           << std::setw(10) << "time [s]" << std::setw(10) << "ratio" << "\n";
     bool below = false;  // some winner's cheapest run is below its level
+    bool ties = false;   // some cell names a tie
     for (const run_plan& plan : plans) {
         const scene& s = *plan.s;
         if (!has_sweep(plan) || !scene_has(rows, s, by)) continue;
         for (double level : levels) {
+            std::vector<std::pair<time_to_accuracy, std::string>> reached;  // each method reaching the level
             for (const scene_method& m : s.methods)
-                if (const auto r = time_to_reach(curve_of(rows, m, by), level))
+                if (const auto r = time_to_reach(curve_of(rows, m, by), level)) {
+                    reached.emplace_back(*r, m.name);
                     csv << csv_line({s.name, name_of_measure, format_number(level), m.name, format_number(r->seconds, 6),
                                      r->bracketed ? "yes" : "no", format_number(r->above.parameter, 6),
                                      format_number(r->above.error, 6), format_number(r->above.seconds, 6),
                                      format_number(r->below.parameter, 6), format_number(r->below.error, 6),
                                      format_number(r->below.seconds, 6)});
+                }
             const verdict ours = fastest(rows, s, level, false, by), theirs = fastest(rows, s, level, true, by);
-            const auto name = [&below](const verdict& v) {
-                // "*": the method's cheapest run is already below the level (footnote after the table).
+            const auto name = [&below, &ties](const verdict& v) {
+                // "*": the method's cheapest run is already below the level; "~": a tie (footnotes after the table).
                 if (v.method && !v.reach->bracketed) below = true;
-                if (v.method) return v.method->name + (v.reach->bracketed ? "" : " *");
+                if (v.tied) ties = true;
+                if (v.method)
+                    return v.method->name + (v.reach->bracketed ? "" : " *") + (v.tied ? " ~ " + v.tied->name : "");
                 return std::isfinite(v.best_error) ? "not reached (best " + format_number(v.best_error, 2) + ")"
                                                    : std::string("none");
             };
             const auto time = [](const verdict& v) { return v.reach ? format_number(v.reach->seconds, 3) : "-"; };
             const std::string ratio =
                 ours.reach && theirs.reach ? format_number(theirs.reach->seconds / ours.reach->seconds, 3) + "x" : "-";
-            const verdict* pick = ours.reach && (!theirs.reach || ours.reach->seconds <= theirs.reach->seconds) ? &ours
-                                  : theirs.reach ? &theirs
-                                                 : nullptr;
+            // The pick: the fastest of all, and every method of either group within a tie of it, fastest first.
+            std::stable_sort(reached.begin(), reached.end(),
+                             [](const auto& a, const auto& b) { return a.first.seconds < b.first.seconds; });
+            std::string picked = reached.empty() ? "-" : reached[0].second;
+            for (std::size_t k = 1; k < reached.size(); ++k)
+                if (tied(reached[0].first, reached[k].first)) picked += " ~ " + reached[k].second, ties = true;
             md << "| " << markdown_cell(s.name) << " | " << format_number(level) << " | " << markdown_cell(name(ours))
                << " | " << time(ours) << " | " << markdown_cell(name(theirs)) << " | " << time(theirs) << " | " << ratio
-               << " | " << (pick ? markdown_cell(pick->method->name) : "-") << " |\n";
+               << " | " << markdown_cell(picked) << " |\n";
             table << std::left << std::setw(22) << s.name << std::setw(8) << format_number(level) << std::setw(38)
                   << name(ours) << std::right << std::setw(10) << time(ours) << "  " << std::left << std::setw(24)
                   << name(theirs) << std::right << std::setw(10) << time(theirs) << std::setw(10) << ratio << "\n";
         }
     }
     md << "\n";
+    if (ties) {
+        const std::string note = "A ~ B: a tie, either may come first in another run: B's time is within 5% of "
+                                 "A's (on an idle machine two runs of this program put 95% of timed runs within 3% "
+                                 "of each other, 99% within 8%), or B's fastest timing round beat A's slowest.";
+        md << note << "\n\n";
+        table << note << "\n";
+    }
     if (!below) return;
     // Such a cell measures no accuracy: Boris's pusher, for one, keeps |v| and so H
     // exactly in a pure magnetic field, at any dt (docs/charged-particles.md).

@@ -13,7 +13,10 @@
 
 #include "read_csv.hpp"
 #include "scratch_directory.hpp"
+#include "methods/run_plan.hpp"
 #include "report/report.hpp"
+#include "report/report_rows.hpp"
+#include "report/report_write.hpp"
 #include "reading/scene.hpp"
 #include "output/writers.hpp"
 
@@ -340,6 +343,62 @@ t_end = 12.566370614359172
     REQUIRE(rows.size() > 1);
     CHECK(rows[0][1] == "measure");
     for (std::size_t i = 1; i < rows.size(); ++i) CHECK(rows[i][4] != "");
+    fs::remove_all(dir);
+}
+
+}  // namespace test_program_test_report
+
+namespace test_program_test_report {
+
+// Rows with set times and errors: each method's error falls as dt^2 and its
+// time grows as 1/dt, scaled by the method's `cost`; the timing rounds spread
+// by the factor 1 -+ `spread` about it.
+std::string summary_of_costs(const std::map<std::string, double>& cost, const fs::path& dir, double spread = 0) {
+    const scene s = parse_scene(R"(name = "osc"
+system = "harmonic_oscillator"
+methods = ["leapfrog_kdk", "leapfrog_dkd", "odeint_rk4"]
+dt = [0.1, 0.01, 0.001]
+t_end = 1
+)",
+                                "osc.toml");
+    std::vector<runnable_system> systems{system_of(s)};
+    std::vector<run_plan> plans{plan_runs(s, systems[0], sweep_use::whole)};
+    std::vector<report_row> rows = rows_of(plans, systems);
+    for (report_row& r : rows) {
+        r.r.stable = true;
+        r.final_error = r.run->dt * r.run->dt;
+        r.r.max_energy_error = r.final_error;
+        r.r.seconds = cost.at(r.method().name) / r.run->dt;
+        r.r.seconds_min = r.r.seconds * (1 - spread);
+        r.r.seconds_max = r.r.seconds * (1 + spread);
+    }
+    std::ostringstream md, table;
+    fs::create_directories(dir);
+    fastest_per_level(rows, plans, md, table, dir);
+    return md.str();
+}
+
+TEST_CASE("report: times within 5% or with overlapping rounds are named as a tie, others as a pick") {
+    const fs::path dir = scratch_directory("sympl_test_ties");
+    fs::remove_all(dir);
+    // 1e-4 is reached at dt = 1e-2 by all three: times 100 cost.
+    const std::string tie = summary_of_costs({{"leapfrog_kdk", 1.0}, {"leapfrog_dkd", 1.04}, {"odeint_rk4", 1.5}}, dir);
+    CHECK(tie.find("| osc | 0.0001 | leapfrog_kdk ~ leapfrog_dkd |") != std::string::npos);
+    // The pick names every method within 5% of the fastest, of either group: Odeint's, 1.5x, is not one.
+    CHECK(tie.find("| leapfrog_kdk ~ leapfrog_dkd |\n") != std::string::npos);
+    CHECK(tie.find("A ~ B: a tie, either may come first in another run") != std::string::npos);
+    const std::string apart = summary_of_costs({{"leapfrog_kdk", 1.0}, {"leapfrog_dkd", 1.1}, {"odeint_rk4", 1.04}}, dir);
+    CHECK(apart.find("| osc | 0.0001 | leapfrog_kdk |") != std::string::npos);
+    CHECK(apart.find("| leapfrog_kdk ~ odeint_rk4 |\n") != std::string::npos);  // sympl against Odeint, 4% apart
+    const std::string none = summary_of_costs({{"leapfrog_kdk", 1.0}, {"leapfrog_dkd", 1.1}, {"odeint_rk4", 1.5}}, dir);
+    CHECK(none.find(" ~ ") == std::string::npos);
+    CHECK(none.find("A ~ B") == std::string::npos);
+    // 10% apart, but the timing rounds spread by 6% each way: they overlap, a tie.
+    const std::string noisy = summary_of_costs({{"leapfrog_kdk", 1.0}, {"leapfrog_dkd", 1.1}, {"odeint_rk4", 1.5}}, dir, 0.06);
+    CHECK(noisy.find("| osc | 0.0001 | leapfrog_kdk ~ leapfrog_dkd |") != std::string::npos);
+    CHECK(noisy.find("| leapfrog_kdk ~ leapfrog_dkd |\n") != std::string::npos);
+    const std::string quiet = summary_of_costs({{"leapfrog_kdk", 1.0}, {"leapfrog_dkd", 1.1}, {"odeint_rk4", 1.5}}, dir, 0.04);
+    CHECK(quiet.find(" ~ ") == std::string::npos);
     fs::remove_all(dir);
 }
 
