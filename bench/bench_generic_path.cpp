@@ -5,7 +5,10 @@
 // program's own timing (src/report/timing.hpp).
 // Built as the program is (CMake's Release flags, no -march): it links the
 // program's library, whose runs these are.
-//   bench_generic_path            FPU-beta N = 32 and Henon-Heiles, 4 methods each
+// The four-body cluster's compiled run is examples/own_program's C++ system
+// (planar_cluster.hpp), compiled here as sympl_add_program compiles it.
+//   bench_generic_path            FPU-beta N = 32, Henon-Heiles, the pendulum
+//                                 and the cluster, 4 methods each
 //   bench_generic_path --quick    fewer rounds
 #include <algorithm>
 #include <cstdio>
@@ -15,9 +18,13 @@
 
 #include <sympl/hamiltonians/fpu_beta.hpp>
 #include <sympl/hamiltonians/henon_heiles.hpp>
+#include <sympl/hamiltonians/pendulum.hpp>
+
+#include "planar_cluster.hpp"
 
 #include "formulas/formula_entry.hpp"
 #include "running/generic_path.hpp"
+#include "running/runnable.hpp"
 #include "running/systems.hpp"
 
 using namespace sympl::app;
@@ -94,5 +101,29 @@ int main(int argc, char** argv) {
     hhf.T = "(px^2 + py^2) / 2";
     hhf.V = "(x^2 + y^2) / 2 + x^2*y - y^3/3";
     compare("Henon-Heiles", hh, hh_generic, formula_system(hhf, hh.x0), 0.05, 500, rounds);
+    const runnable_system pendulum = make_system("pendulum", {}, {}, {}, "bench");
+    const auto pendulum_generic =
+        detail::generic_run(erased_separable::of(sympl::hamiltonians::pendulum{}), pendulum.energy);
+    sympl::app::formulas::formula_texts pf;
+    pf.name = "pendulum_formulas";
+    pf.parameters = {{"m", 1.0}, {"l", 1.0}, {"g", 1.0}};
+    pf.coordinates = {"theta"};
+    pf.T = "ptheta^2 / (2*m*l^2)";
+    pf.V = "m*g*l*(1 - cos(theta))";
+    compare("pendulum", pendulum, pendulum_generic, formula_system(pf, pendulum.x0), 0.1, 1000, rounds);
+    // examples/own_program/planar_cluster.cpp's row, compiled for the kinds it names.
+    using enum method_kind;
+    constexpr compiled own{.kinds = {table, dprkn, odeint}};
+    const runnable_system cluster = runnable<Eigen::Dynamic, own>(
+        my::planar_cluster{}, {1.05, 0, 0.95, 0, -1, 0.05, -1, -0.05, 0, 2.9431747586863373, 0, -1.5289611963132423,
+                               -2.23606797749979, -0.7071067811865476, 2.23606797749979, -0.7071067811865476});
+    const auto cluster_generic = detail::generic_run(erased_separable::of(my::planar_cluster{}), cluster.energy);
+    sympl::app::formulas::formula_texts cf;  // examples/formulas/cluster.toml
+    cf.name = "cluster_formulas";
+    cf.parameters = {{"G", 1.0}, {"m", 1.0}, {"bodies", 4}};
+    cf.T = "sum(i, 0, 2*bodies - 1, p[i]^2 / (2*m))";
+    cf.V = "sum(i, 0, bodies - 2, sum(j, i + 1, bodies - 1, -G*m*m / sqrt((q[2*i] - q[2*j])^2 + "
+           "(q[2*i+1] - q[2*j+1])^2)))";
+    compare("four-body cluster", cluster, cluster_generic, formula_system(cf, cluster.x0), 0.001, 2, rounds);
     std::printf("ratios: generic / compiled and formula / compiled, medians of %d interleaved rounds\n", rounds);
 }

@@ -12,6 +12,7 @@
 // chosen so that no component is zero or repeats; the steppers then go on
 // differentiating T at every step, as before.
 #include <algorithm>
+#include <concepts>
 #include <cmath>
 #include <exception>
 #include <limits>
@@ -128,12 +129,20 @@ private:
     form form_ = form::unknown;
 };
 
-// dT/dp: M^-1 p where `kinetic` finds T quadratic (measured here at the first
-// call with a new dimension), else the Hamiltonian's own velocity or a
+// dT/dp: p itself where the Hamiltonian says so at run time (a system behind
+// function pointers, src/running/erased_system.hpp: one indirect call saved
+// per stage), M^-1 p where `kinetic` finds T quadratic (measured here at the
+// first call with a new dimension), else the Hamiltonian's own velocity or a
 // gradient of its generic T. For the steppers that hold a quadratic_kinetic.
 template <class H, class Vec>
 [[gnu::always_inline]] inline void recognised_velocity(const H& h, quadratic_kinetic<Vec>& kinetic, const Vec& p,
                                                         Vec& v) {
+    if constexpr (requires { { h.velocity_is_p() } -> std::same_as<bool>; }) {
+        if (h.velocity_is_p()) {
+            v = p;
+            return;
+        }
+    }
     if constexpr (!has_analytic_velocity<H, Vec> && std::is_floating_point_v<scalar_of<Vec>>) {
         if (kinetic.dimension() != p.size()) kinetic.recognise(h, p.size());
         if (kinetic.applies()) {
