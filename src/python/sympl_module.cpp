@@ -282,6 +282,76 @@ public:
         return out;
     }
 
+    // Events of a splitting table's run (drivers/events.hpp) as SciPy's
+    // solve_ivp takes them: callables g(t, q, p) with optional attributes
+    // `terminal` (stop at the first crossing) and `direction` (> 0 rising,
+    // < 0 falling, 0 both). Each g is called with the GIL held, at every step
+    // end and inside Brent's search: the slow path, as a Python force is.
+    py::dict events(const std::string& method, double t_end, double dt, const py::list& gs, double t0,
+                    const py::object& x0) const {
+        if (!sys_.events)
+            throw invalid_argument(name_ + " has no events here; expected a separable Hamiltonian H = T(p) + V(q)");
+        const method_spec m = method_named(method);
+        if (m.kind != method_kind::table || !m.coefficients || m.extrapolation_columns || m.compensated)
+            throw invalid_argument("events method '" + method + "'; expected a plain splitting table");
+        if (!(dt > 0 && std::isfinite(dt))) throw invalid_argument("dt = " + shortest(dt) + "; expected a finite step > 0");
+        if (!(std::isfinite(t0) && std::isfinite(t_end) && t_end > t0))
+            throw invalid_argument("t0 = " + shortest(t0) + ", t_end = " + shortest(t_end) +
+                                   "; expected finite times with t_end > t0");
+        if ((t_end - t0) / dt > default_max_steps)
+            throw invalid_argument("(t_end - t0) / dt = " + shortest((t_end - t0) / dt) + " steps; expected at most " +
+                                   shortest(default_max_steps));
+        if (gs.empty()) throw invalid_argument("events: an empty list; expected one callable g(t, q, p) or more");
+        const std::vector<double> x = x0.is_none() ? sys_.x0 : vector_of(x0, "x0");
+        if (x.size() != sys_.x0.size())
+            throw invalid_argument("x0 has " + std::to_string(x.size()) + " numbers; expected q then p, " +
+                                   std::to_string(sys_.x0.size()));
+        const std::size_t n = x.size() / 2;
+        std::vector<event_spec> specs;
+        for (const py::handle g : gs) {
+            if (!PyCallable_Check(g.ptr()))
+                throw py::type_error("events: " + std::string(py::str(py::type::of(g)).cast<std::string>()) +
+                                     " is not callable; expected callables g(t, q, p)");
+            event_spec e;
+            e.stop = py::hasattr(g, "terminal") && py::bool_(g.attr("terminal"));
+            const double d = py::hasattr(g, "direction") ? g.attr("direction").cast<double>() : 0.0;
+            e.direction = d > 0 ? 1 : d < 0 ? -1 : 0;
+            e.g = [f = py::reinterpret_borrow<py::object>(g), n](double t, const std::vector<double>& y) {
+                py::gil_scoped_acquire held;
+                py::array_t<double> q(py::ssize_t(n), y.data()), p(py::ssize_t(n), y.data() + n);
+                return f(t, q, p).cast<double>();
+            };
+            specs.push_back(std::move(e));
+        }
+        event_outcome o;
+        {
+            py::gil_scoped_release released;
+            o = sys_.events(*m.coefficients, dt, t0, t_end, x, specs);
+        }
+        py::list t_events, q_events, p_events;
+        for (std::size_t k = 0; k < specs.size(); ++k) {
+            std::vector<const event_outcome::hit*> mine;
+            for (const auto& h : o.hits)
+                if (h.event == k) mine.push_back(&h);
+            py::array_t<double> t(py::ssize_t(mine.size())), q({py::ssize_t(mine.size()), py::ssize_t(n)}),
+                p({py::ssize_t(mine.size()), py::ssize_t(n)});
+            for (std::size_t i = 0; i < mine.size(); ++i) {
+                t.mutable_at(py::ssize_t(i)) = mine[i]->t;
+                std::copy_n(mine[i]->x.begin(), n, q.mutable_data(py::ssize_t(i), 0));
+                std::copy_n(mine[i]->x.begin() + long(n), n, p.mutable_data(py::ssize_t(i), 0));
+            }
+            t_events.append(t), q_events.append(q), p_events.append(p);
+        }
+        py::dict out;
+        out["t_events"] = t_events;
+        out["q_events"] = q_events;
+        out["p_events"] = p_events;
+        out["stopped"] = o.stopped;
+        out["t"] = o.t;
+        out["final_state"] = py::array_t<double>(py::ssize_t(o.x.size()), o.x.data());
+        return out;
+    }
+
     // The request's step and tolerance; run(observe=False) takes nothing that watches the run.
     static run_request rq_of(double dt, double tolerance, std::size_t energy_every, std::size_t trajectory_every,
                              const py::object& times, bool timing) {
@@ -680,6 +750,12 @@ PYBIND11_MODULE(sympl, m) {
              py::arg("x0") = py::none(),
              "The upward crossings of q[0] = 0 (a Poincare section) of `steps` steps of dt by a splitting table: "
              "rows of q then p")
+        .def("events", &sympl::app::python::system::events, py::arg("method"), py::arg("t_end"), py::arg("dt"),
+             py::arg("events"), py::arg("t0") = 0.0, py::arg("x0") = py::none(),
+             "A splitting table's run with events, as SciPy's solve_ivp takes them: callables g(t, q, p), with "
+             "optional attributes terminal (stop at the first crossing) and direction (> 0 rising, < 0 falling); "
+             "each crossing located on the cubic Hermite interpolant by Brent's method. A dict: t_events, q_events, "
+             "p_events (a list per event), stopped, t and final_state (where the run ended)")
         .def("ensemble", &sympl::app::python::system::ensemble, py::arg("starts"), py::arg("method"), py::arg("t_end"),
              py::arg("dt"), py::arg("t0") = 0.0, py::arg("sample_every") = 10, py::arg("megno") = false,
              py::arg("threads") = 0,

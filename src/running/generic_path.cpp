@@ -3,9 +3,41 @@
 // erased_separable. Any H(q, p): generic_path_general.cpp.
 #include "running/generic_path.hpp"
 
+#include <sympl/drivers/events.hpp>
+
 #include "running/runnable.hpp"
 
 namespace sympl::app::detail {
+
+namespace {
+
+// A splitting table's events on the generic path (drivers/events.hpp): each
+// g called on the stacked state, which costs a copy a call; g is the user's
+// (a Python callable, say), which costs more.
+events_function events_of(erased_separable sys) {
+    return [sys = std::move(sys)](const table& m, double dt, double t0, double t_end, const std::vector<double>& x0,
+                                  const std::vector<event_spec>& specs) {
+        using S = state_of<Eigen::Dynamic>;
+        std::vector<event<S>> events;
+        for (const event_spec& e : specs)
+            events.push_back({[g = e.g](const S& x, double t) { return g(t, to_vector(x)); },
+                              e.direction > 0   ? event_direction::rising
+                              : e.direction < 0 ? event_direction::falling
+                                                : event_direction::both,
+                              e.stop ? event_action::stop : event_action::record});
+        splitting_stepper<erased_separable, S> stepper(sys, m);
+        S x = from_stacked<S>(x0);
+        const auto run = integrate_events(stepper, sys, x, t0, t_end, dt, events);
+        event_outcome out;
+        for (const auto& h : run.hits) out.hits.push_back({h.event, h.t, to_vector(h.state)});
+        out.stopped = run.stopped;
+        out.t = run.stopped && !run.hits.empty() ? run.hits.back().t : t_end;
+        out.x = to_vector(x);
+        return out;
+    };
+}
+
+}  // namespace
 
 run_function generic_run(erased_separable sys, energy_function energy) {
     return generic_runner(std::move(sys), std::move(energy));
@@ -16,7 +48,8 @@ generic_parts generic_separable(erased_separable sys, energy_function energy) {
             .reference_method = splitting_reference_method,
             .reference = reference_by_splitting(sys),
             .ensemble = ensemble_of<Eigen::Dynamic, 1>(sys),
-            .section = section_of<Eigen::Dynamic>(sys)};
+            .section = section_of<Eigen::Dynamic>(sys),
+            .events = events_of(sys)};
 }
 
 }  // namespace sympl::app::detail

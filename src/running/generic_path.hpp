@@ -27,6 +27,7 @@ struct generic_parts {
     reference_function reference;
     ensemble_function ensemble;
     section_function section;
+    events_function events;
 };
 
 generic_parts generic_separable(erased_separable sys, energy_function energy);

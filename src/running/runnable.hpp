@@ -348,6 +348,7 @@ runnable_system runnable(Sys sys, std::vector<double> x0, std::function<std::vec
             detail::generic_parts g = detail::generic_parts_of(sys, p.energy);
             p.reference_method = g.reference_method;
             p.reference = std::move(g.reference);
+            p.events = std::move(g.events);
             if constexpr (separable_hamiltonian<Sys, V> && Own.ensembles) {
                 p.ensemble = detail::ensemble_of<Dim, native_double_width>(sys);
                 p.section = detail::section_of<Dim>(sys);

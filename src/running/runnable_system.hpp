@@ -100,6 +100,27 @@ using ensemble_function =
     std::function<std::vector<ensemble_row>(const ensemble_request&, const std::vector<std::vector<double>>& starts)>;
 using section_function = std::function<std::vector<std::vector<double>>(const table&, double dt, std::size_t steps,
                                                                         const std::vector<double>& x0)>;
+// An event of a run (drivers/events.hpp): g(t, x) of the stacked state x (q
+// then p), a crossing of zero counted in `direction` (+1 rising, -1 falling,
+// 0 both); `stop` ends the run at the first.
+struct event_spec {
+    std::function<double(double t, const std::vector<double>& x)> g;
+    int direction = 0;
+    bool stop = false;
+};
+struct event_outcome {
+    struct hit {
+        std::size_t event = 0;  // index into the events given
+        double t = 0;
+        std::vector<double> x;  // interpolated at t
+    };
+    std::vector<hit> hits;  // in time order
+    bool stopped = false;   // a stop event ended the run
+    double t = 0;           // where the run ended (t_end, or the stop event's time)
+    std::vector<double> x;  // its state there
+};
+using events_function = std::function<event_outcome(const table&, double dt, double t0, double t_end,
+                                                    const std::vector<double>& x0, const std::vector<event_spec>&)>;
 using reference_function =
     std::function<std::vector<double>(double t0, double t_end, double dt, const std::vector<double>& x0)>;
 
@@ -130,6 +151,10 @@ struct runnable_system {
     // Upward crossings of q1 = 0 (a Poincare section) of `steps` steps of dt
     // from x0, as stacked states (separable Hamiltonians only).
     section_function section;
+    // The events of a splitting table's run of fixed steps dt from x0 at t0 to
+    // t_end, located on the cubic Hermite interpolant (separable Hamiltonians
+    // only): on the generic path, compiled once for every system.
+    events_function events;
     // A reference at t_end with step dt: Sofroniou-Spaletta 10 in long double
     // (a separable H), Gauss-Legendre 6 in long double (any other H), RK4.
     std::string reference_method;  // which, as the report names it

@@ -286,3 +286,47 @@ def test_a_run_resumes_from_its_checkpoint_bit_for_bit(tmp_path):
         hh.run("blanes_moan_s6", t_end=50.0, dt=0.05, checkpoint=file)
     with pytest.raises(ValueError, match="observe=False with checkpoints"):
         hh.run("blanes_moan_s6", t_end=50.0, dt=0.05, checkpoint=file, checkpoint_every=10, observe=False)
+
+
+def test_events_are_located_as_scipy_takes_them_and_stop_a_run():
+    # The oscillator q = cos t, p = -sin t: q = 0 at pi/2 + k pi, falling at
+    # pi/2 + 2 k pi. Each crossing is read off the step's cubic Hermite
+    # interpolant, within dt^4/384 max|q''''| = dt^4/384 in q, so in time
+    # (|dq/dt| = 1 there), plus the sixth-order table's phase error (1e-10).
+    osc = sympl.System("harmonic_oscillator")
+    dt = 0.05
+
+    def q_zero(t, q, p):
+        return q[0]
+
+    out = osc.events("blanes_moan_s6", t_end=20.0, dt=dt, events=[q_zero])
+    exact = np.array([math.pi / 2 + k * math.pi for k in range(6)])
+    assert out["t_events"][0].shape == (6,)
+    assert np.max(np.abs(out["t_events"][0] - exact)) <= dt**4 / 384 + 1e-9
+    assert np.max(np.abs(out["q_events"][0])) <= dt**4 / 384 + 1e-9
+    assert out["stopped"] is False and out["t"] == 20.0
+
+    def rising(t, q, p):
+        return q[0]
+    rising.direction = 1.0
+
+    def stop(t, q, p):
+        return q[0]
+    stop.terminal = True
+    stop.direction = -1
+    both = osc.events("blanes_moan_s6", t_end=20.0, dt=dt, events=[rising, stop])
+    assert both["t_events"][0].shape == (0,)     # the run stopped at pi/2, before the first rising crossing
+    assert both["stopped"] is True
+    assert abs(both["t"] - math.pi / 2) <= dt**4 / 384 + 1e-9
+    assert abs(both["final_state"][0]) <= dt**4 / 384 + 1e-9
+    ups = osc.events("blanes_moan_s6", t_end=20.0, dt=dt, events=[rising])["t_events"][0]
+    assert np.max(np.abs(ups - np.array([3 * math.pi / 2 + 2 * k * math.pi for k in range(3)]))) <= dt**4 / 384 + 1e-9
+
+    with pytest.raises(TypeError, match="is not callable; expected callables g"):
+        osc.events("blanes_moan_s6", t_end=1.0, dt=dt, events=[1.5])
+    with pytest.raises(ValueError, match="events method 'rk4'; expected a plain splitting table"):
+        osc.events("rk4", t_end=1.0, dt=dt, events=[q_zero])
+    with pytest.raises(ValueError, match="g = nan at t = 0; expected a finite value"):
+        osc.events("leapfrog_kdk", t_end=1.0, dt=dt, events=[lambda t, q, p: float("nan")])
+    with pytest.raises(ZeroDivisionError):  # the callable's own exception, as Python raised it
+        osc.events("leapfrog_kdk", t_end=1.0, dt=dt, events=[lambda t, q, p: 1 / 0])
