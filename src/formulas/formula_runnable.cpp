@@ -40,6 +40,7 @@ runnable_system formula_runnable(std::shared_ptr<const prepared_formulas> f, std
     r.reference = std::move(g.reference);
     r.ensemble = std::move(g.ensemble);
     r.section = std::move(g.section);
+    r.events = std::move(g.events);
     return r;
 }
 

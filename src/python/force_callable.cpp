@@ -145,6 +145,7 @@ runnable_system callable_runnable(std::shared_ptr<const force_callables> c, std:
     r.x0 = std::move(x0);
     r.runner = std::move(g.run);
     r.section = std::move(g.section);
+    r.events = std::move(g.events);
     return r;
 }
 

@@ -282,6 +282,18 @@ public:
         return out;
     }
 
+    // SciPy's `terminal`: True stops at the first crossing; its count form
+    // (stop after N, SciPy 1.14) is not offered, so N > 1 is refused.
+    static bool terminal_of(const py::handle g, std::size_t k) {
+        if (!py::hasattr(g, "terminal")) return false;
+        const py::object t = g.attr("terminal");
+        if (py::isinstance<py::bool_>(t)) return t.cast<bool>();
+        if (py::isinstance<py::int_>(t) && (t.cast<long long>() == 0 || t.cast<long long>() == 1))
+            return t.cast<long long>() == 1;
+        throw invalid_argument("events[" + std::to_string(k) + "].terminal = " + py::repr(t).cast<std::string>() +
+                               "; expected True or False (stopping after a count of crossings is not offered)");
+    }
+
     // Events of a splitting table's run (drivers/events.hpp) as SciPy's
     // solve_ivp takes them: callables g(t, q, p) with optional attributes
     // `terminal` (stop at the first crossing) and `direction` (> 0 rising,
@@ -313,13 +325,21 @@ public:
                 throw py::type_error("events: " + std::string(py::str(py::type::of(g)).cast<std::string>()) +
                                      " is not callable; expected callables g(t, q, p)");
             event_spec e;
-            e.stop = py::hasattr(g, "terminal") && py::bool_(g.attr("terminal"));
+            e.stop = terminal_of(g, specs.size());
             const double d = py::hasattr(g, "direction") ? g.attr("direction").cast<double>() : 0.0;
             e.direction = d > 0 ? 1 : d < 0 ? -1 : 0;
-            e.g = [f = py::reinterpret_borrow<py::object>(g), n](double t, const std::vector<double>& y) {
+            // The callable held through a pointer whose last owner takes the
+            // GIL to let it go: copies of e.g, made where the GIL is released,
+            // then never touch a Python reference count.
+            const std::shared_ptr<py::object> f(new py::object(py::reinterpret_borrow<py::object>(g)),
+                                                [](py::object* o) {
+                                                    py::gil_scoped_acquire held;
+                                                    delete o;
+                                                });
+            e.g = [f, n](double t, const std::vector<double>& y) {
                 py::gil_scoped_acquire held;
                 py::array_t<double> q(py::ssize_t(n), y.data()), p(py::ssize_t(n), y.data() + n);
-                return f(t, q, p).cast<double>();
+                return (*f)(t, q, p).cast<double>();
             };
             specs.push_back(std::move(e));
         }

@@ -217,7 +217,7 @@ void fastest_table(const std::vector<report_row>& rows, const std::vector<run_pl
           << std::left << std::setw(22) << "scene" << std::setw(8) << "level" << std::setw(38) << "fastest sympl"
           << std::right << std::setw(10) << "time [s]" << "  " << std::left << std::setw(24) << "fastest Odeint" << std::right
           << std::setw(10) << "time [s]" << std::setw(10) << "ratio" << "\n";
-    bool below = false;  // some winner's cheapest run is below its level
+    bool below = false;  // some winner's run at its largest dt or tolerance is below its level
     bool ties = false;   // some cell names a tie
     for (const run_plan& plan : plans) {
         const scene& s = *plan.s;
@@ -235,7 +235,7 @@ void fastest_table(const std::vector<report_row>& rows, const std::vector<run_pl
                 }
             const verdict ours = fastest(rows, s, level, false, by), theirs = fastest(rows, s, level, true, by);
             const auto name = [&below, &ties](const verdict& v) {
-                // "*": the method's cheapest run is already below the level; "~": a tie (footnotes after the table).
+                // "*": the method's largest dt or tolerance is already below the level; "~": a tie (footnotes).
                 if (v.method && !v.reach->bracketed) below = true;
                 if (v.tied) ties = true;
                 if (v.method)
@@ -271,7 +271,8 @@ void fastest_table(const std::vector<report_row>& rows, const std::vector<run_pl
     if (!below) return;
     // Such a cell measures no accuracy: Boris's pusher, for one, keeps |v| and so H
     // exactly in a pure magnetic field, at any dt (docs/charged-particles.md).
-    const std::string note = "* the method's cheapest run is already below the level: the time is that run's, not "
+    const std::string note = "* the method's run at its largest dt or tolerance is already below the level: the time "
+                             "is that run's, not "
                              "read off a curve, and the cell says little about accuracy (a method that keeps this "
                              "measure exactly, such as Boris's pusher for the energy in a pure magnetic field, wins it "
                              "at any dt).";

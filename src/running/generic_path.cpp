@@ -20,7 +20,9 @@ events_function events_of(erased_separable sys) {
         using S = state_of<Eigen::Dynamic>;
         std::vector<event<S>> events;
         for (const event_spec& e : specs)
-            events.push_back({[g = e.g](const S& x, double t) { return g(t, to_vector(x)); },
+            // g by reference: `specs` outlives the run, and a copy of a
+            // caller's g may own a Python object (src/python/sympl_module.cpp).
+            events.push_back({[&g = e.g](const S& x, double t) { return g(t, to_vector(x)); },
                               e.direction > 0   ? event_direction::rising
                               : e.direction < 0 ? event_direction::falling
                                                 : event_direction::both,
@@ -31,7 +33,7 @@ events_function events_of(erased_separable sys) {
         event_outcome out;
         for (const auto& h : run.hits) out.hits.push_back({h.event, h.t, to_vector(h.state)});
         out.stopped = run.stopped;
-        out.t = run.stopped && !run.hits.empty() ? run.hits.back().t : t_end;
+        out.t = run.t;
         out.x = to_vector(x);
         return out;
     };

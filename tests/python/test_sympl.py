@@ -322,6 +322,18 @@ def test_events_are_located_as_scipy_takes_them_and_stop_a_run():
     ups = osc.events("blanes_moan_s6", t_end=20.0, dt=dt, events=[rising])["t_events"][0]
     assert np.max(np.abs(ups - np.array([3 * math.pi / 2 + 2 * k * math.pi for k in range(3)]))) <= dt**4 / 384 + 1e-9
 
+    # The same events on the oscillator written as formulas, and on a Python force.
+    mine = sympl.System.from_formulas(T="p[0]^2 / 2", V="q[0]^2 / 2", q0=[1.0], p0=[0.0], name="oscillator_events")
+    theirs = sympl.System.from_force(lambda q: -q, q0=[1.0], p0=[0.0])
+    for other in (mine, theirs):
+        again = other.events("blanes_moan_s6", t_end=20.0, dt=dt, events=[q_zero])
+        assert np.max(np.abs(again["t_events"][0] - out["t_events"][0])) <= 1e-12
+
+    def counted(t, q, p):
+        return q[0]
+    counted.terminal = 3   # SciPy 1.14's "stop after 3": not offered, so refused
+    with pytest.raises(ValueError, match=r"events\[0\].terminal = 3; expected True or False"):
+        osc.events("leapfrog_kdk", t_end=1.0, dt=dt, events=[counted])
     with pytest.raises(TypeError, match="is not callable; expected callables g"):
         osc.events("blanes_moan_s6", t_end=1.0, dt=dt, events=[1.5])
     with pytest.raises(ValueError, match="events method 'rk4'; expected a plain splitting table"):
