@@ -216,8 +216,7 @@ struct splitting_loop : substep_updates<H, State> {
 
     void size_workspace(Eigen::Index n) {
         for (vector* v : {&force, &velocity, &q_error, &p_error, &increment, &sum}) {
-            // Unused residuals stay empty; a fixed-size one cannot, so it is zeroed:
-            // memory() hands it to checkpoints, which must not carry stray bits.
+            // Unused residuals stay empty, or zero where fixed-size: memory() hands them to checkpoints.
             if (v != &force && v != &velocity && !options.compensated && vector::SizeAtCompileTime == Eigen::Dynamic)
                 continue;
             v->resize(n);
