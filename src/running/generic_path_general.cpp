@@ -16,8 +16,10 @@ generic_parts generic_general(erased_general h, energy_function energy) {
     return {.run = generic_run(sys.h, std::move(energy)),
             .reference_method = gauss_reference_method,
             .reference = reference_by_gauss(sys),
-            .ensemble = {},  // ensembles and sections run splitting tables: separable systems only
-            .section = {}};
+            // ensembles, sections and events run splitting tables: separable systems only
+            .ensemble = {},
+            .section = {},
+            .events = {}};
 }
 
 }  // namespace sympl::app::detail
