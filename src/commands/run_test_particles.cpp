@@ -4,6 +4,7 @@
 #include "commands/run_test_particles.hpp"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <charconv>
 #include <cmath>
@@ -103,6 +104,35 @@ struct planets {
     std::vector<std::string> body_names;  // star first
     bool megno = false;
 };
+
+// A map over planets that fall into the star or leave it measures nothing:
+// each planet's heliocentric two-body orbit at the start (about G (m_0 +
+// m_k)) must be bound with its pericentre outside the star, as the test
+// particles' are (orbit_outside). Planets started at rest have e = 1.
+void check_planets_bound(const scene& s, const planets& p) {
+    const auto at = [&](const Eigen::VectorXd& x, std::size_t k, int c) { return x[Eigen::Index(3 * k + std::size_t(c))]; };
+    for (std::size_t k = 1; k < p.mass.size(); ++k) {
+        std::array<double, 3> r{}, v{};
+        for (int c = 0; c < 3; ++c) {
+            r[std::size_t(c)] = at(p.x0.q, k, c) - at(p.x0.q, 0, c);
+            v[std::size_t(c)] = at(p.x0.p, k, c) / p.mass[k] - at(p.x0.p, 0, c) / p.mass[0];
+        }
+        const auto [a, e] = elements_of(r, v, p.G * (p.mass[0] + p.mass[k]));
+        const std::string planet = s.source + ": the planet " + p.body_names[k] + " starts on a heliocentric orbit with ";
+        const std::string expected = "; expected planets on bound orbits outside the star (" +
+                                     shortest(test_particle_star_radius) + " AU) for a test-particle map";
+        // The pericentre h^2 / (G M (1 + e)), for any conic: 0 for a fall (h = 0), where a (1 - e) rounds.
+        const std::array<double, 3> h{r[1] * v[2] - r[2] * v[1], r[2] * v[0] - r[0] * v[2], r[0] * v[1] - r[1] * v[0]};
+        const double h2 = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
+        const double pericentre = h2 / (p.G * (p.mass[0] + p.mass[k]) * (1 + e));
+        const std::string orbit = "a = " + shortest(a) + " AU, e = " + shortest(e);
+        if (pericentre <= test_particle_star_radius)
+            throw scene_error(planet + orbit + ": pericentre " + shortest(pericentre) + " AU, inside the star" +
+                              expected);
+        if (!(std::isfinite(a) && std::isfinite(e) && a > 0 && e < 1))
+            throw scene_error(planet + orbit + ", not bound" + expected);
+    }
+}
 
 // One piece: orbits[first, last) with the planets, into rows[first, last).
 void run_piece(const planets& p, const std::vector<orbital_elements>& orbits, std::size_t first, std::size_t last,
@@ -312,6 +342,7 @@ std::vector<test_particle_row> run_test_particles(const scene& s, const std::vec
     }
     const std::size_t n = base.x0.size() / 2;
     for (std::size_t i = 0; i < n; ++i) p.x0.q[Eigen::Index(i)] = base.x0[i], p.x0.p[Eigen::Index(i)] = base.x0[n + i];
+    check_planets_bound(s, p);
     const double span_steps = test_particle_span_of(s).steps;
     const double total = span_steps * double(orbits.size());
     if (!(span_steps <= max_steps) || !(total <= 1e4 * max_steps))
