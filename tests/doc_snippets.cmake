@@ -36,7 +36,7 @@ endif()
 
 # The commands CI runs: README.md's set-up commands, verbatim.
 set(ci_command_1 [==[pkgs="cmake g++ make libeigen3-dev libboost-dev doctest-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev gnuplot-nox libopenmpi-dev openmpi-bin libboost-mpi-dev"; dpkg -s $pkgs >/dev/null 2>&1 || { apt-get update && apt-get install -y --no-install-recommends $pkgs; }; cmake -S . -B build && cmake --build build -j2 --target sympl_program && build/sympl report --quick]==])
-set(ci_command_2 [==[pkgs="cmake g++ make libeigen3-dev libboost-dev doctest-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev gnuplot-nox libopenmpi-dev openmpi-bin libboost-mpi-dev pybind11-dev python3-dev python3-numpy python3-pytest"; dpkg -s $pkgs >/dev/null 2>&1 || { apt-get update && apt-get install -y --no-install-recommends $pkgs; }; cmake -S . -B build && cmake --build build -j2 && (cd build && ctest -j2 -LE packaging --output-on-failure)]==])
+set(ci_command_2 [==[pkgs="cmake g++ make libeigen3-dev libboost-dev doctest-dev libcli11-dev libtomlplusplus-dev nlohmann-json3-dev gnuplot-nox libopenmpi-dev openmpi-bin libboost-mpi-dev pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib"; dpkg -s $pkgs >/dev/null 2>&1 || { apt-get update && apt-get install -y --no-install-recommends $pkgs; }; cmake -S . -B build && cmake --build build -j2 && (cd build && ctest -j2 -LE packaging --output-on-failure)]==])
 
 # Lines travel through CMake lists: ';', brackets and backslashes are encoded while they do.
 function(encode text out)

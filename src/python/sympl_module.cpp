@@ -28,6 +28,7 @@
 #include "commands/check_table.hpp"
 
 #include "formulas/formula_entry.hpp"
+#include "python/figures.hpp"
 #include "python/force_callable.hpp"
 #include "methods/method_kinds.hpp"
 #include "output/checkpoint.hpp"
@@ -700,6 +701,8 @@ py::dict report(const py::list& scene_list, const std::string& out, bool quick, 
     result["time_to_accuracy"] = csv_columns(out + "/time_to_accuracy.csv");
     result["summary"] = printed.str();
     result["directory"] = out;
+    // plots: the program's gnuplot PNGs, and matplotlib's figures where it is installed.
+    result["figures"] = plots ? figures_of(py::module_::import("sympl"), result) : py::dict();
     return result;
 }
 
@@ -800,8 +803,11 @@ PYBIND11_MODULE(sympl, m) {
              }, py::arg("other"), py::arg("fraction") = 0.5, "This table for `fraction` of the step, then `other`");
     m.def("check_table", &checked_table, py::arg("kick"), py::arg("drift"), py::arg("convention") = "kick-first",
           "The order conditions and the measured order of coefficients, as `sympl check-table --json`");
+    sympl::app::python::add_figures(m);
     m.def("report", &report, py::arg("scenes") = py::list(), py::arg("out") = "sympl-report",
           py::arg("quick") = true, py::arg("plots") = false, py::arg("threads") = 0,
           "The work-precision report over scenes, files or dicts as their TOML holds them (none: the built-in set), "
-          "written to `out` as `sympl report` writes it; returns work_precision.csv and time_to_accuracy.csv as columns");
+          "written to `out` as `sympl report` writes it; returns work_precision.csv and time_to_accuracy.csv as "
+          "columns, and with plots=True the program's gnuplot PNGs and, where matplotlib is installed, `figures`: "
+          "plot_report()'s two Figures (final_error, max_energy_error), saved beside them");
 }

@@ -81,6 +81,31 @@ def test_the_report_returns_its_work_precision_columns(tmp_path):
     assert isinstance(wp["dt"], np.ndarray) and len(wp["dt"]) == 4
 
 
+def test_the_report_figures_draw_each_methods_runs_in_sweep_order(tmp_path):
+    pytest.importorskip("matplotlib")
+    scene = tmp_path / "pendulum.toml"
+    scene.write_text('system = "pendulum"\nmethods = ["leapfrog_kdk", "forest_ruth_4", "odeint_rk4"]\n'
+                     'dt = [0.2, 0.1, 0.05]\nt_end = 20\n')
+    result = sympl.report([str(scene)], out=str(tmp_path / "report"), quick=True, plots=True)
+    assert set(result["figures"]) == {"final_error", "max_energy_error"}
+    for measure, figure in result["figures"].items():
+        png = tmp_path / "report" / f"work_precision_{measure}.matplotlib.png"
+        assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+        (panel,) = [ax for ax in figure.axes if ax.get_visible()]
+        assert panel.get_xscale() == "log" and panel.get_yscale() == "log"
+        wp = result["work_precision"]
+        for line in panel.get_lines():
+            rows = [k for k, m in enumerate(wp["method"]) if m == line.get_label() and wp["status"][k] == "stable"
+                    and wp[measure][k] > 0]
+            # Each curve is its method's runs, in the rows' (sweep) order, at their seconds and errors.
+            assert list(line.get_xdata()) == [wp["seconds"][k] for k in rows]
+            assert list(line.get_ydata()) == [wp[measure][k] for k in rows]
+            assert line.get_linestyle() == ("--" if wp["kind"][rows[0]] == "odeint" else "-")
+        assert sorted(line.get_label() for line in panel.get_lines()) == sorted(set(wp["method"]))
+    with pytest.raises(ValueError, match="measure = 'seconds'; expected 'final_error' or 'max_energy_error'"):
+        sympl.plot_report(result, "seconds")
+
+
 def test_the_walk_through_of_docs_python_md_runs_as_written(tmp_path, monkeypatch):
     import pathlib
     import re
