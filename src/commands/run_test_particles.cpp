@@ -117,14 +117,23 @@ void check_planets_bound(const scene& s, const planets& p) {
             r[std::size_t(c)] = at(p.x0.q, k, c) - at(p.x0.q, 0, c);
             v[std::size_t(c)] = at(p.x0.p, k, c) / p.mass[k] - at(p.x0.p, 0, c) / p.mass[0];
         }
-        const auto [a, e] = elements_of(r, v, p.G * (p.mass[0] + p.mass[k]));
+        const double mu = p.G * (p.mass[0] + p.mass[k]);
+        const double speed = std::hypot(v[0], v[1], v[2]), distance = std::hypot(r[0], r[1], r[2]);
+        if (!(std::isfinite(speed) && speed * speed < 2 * mu / distance))  // v^2 / 2 - mu / r >= 0, or overflow
+            throw scene_error(s.source + ": the planet " + p.body_names[k] + " starts at " +
+                              format_number(distance, 6) + " AU from the star at " + format_number(speed, 6) +
+                              " AU/day, at or past the escape speed " + format_number(std::sqrt(2 * mu / distance), 6) +
+                              " AU/day" +
+                              "; expected planets on bound orbits outside the star (" +
+                              shortest(test_particle_star_radius) + " AU) for a test-particle map");
+        const auto [a, e] = elements_of(r, v, mu);
         const std::string planet = s.source + ": the planet " + p.body_names[k] + " starts on a heliocentric orbit with ";
         const std::string expected = "; expected planets on bound orbits outside the star (" +
                                      shortest(test_particle_star_radius) + " AU) for a test-particle map";
         // The pericentre h^2 / (G M (1 + e)), for any conic: 0 for a fall (h = 0), where a (1 - e) rounds.
         const std::array<double, 3> h{r[1] * v[2] - r[2] * v[1], r[2] * v[0] - r[0] * v[2], r[0] * v[1] - r[1] * v[0]};
         const double h2 = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
-        const double pericentre = h2 / (p.G * (p.mass[0] + p.mass[k]) * (1 + e));
+        const double pericentre = h2 / (mu * (1 + e));
         const std::string orbit = "a = " + shortest(a) + " AU, e = " + shortest(e);
         if (pericentre <= test_particle_star_radius)
             throw scene_error(planet + orbit + ": pericentre " + shortest(pericentre) + " AU, inside the star" +

@@ -17,12 +17,13 @@ def plot_report(result, measure="final_error", path=None):
     """Work-precision figure of a report() result, drawn with matplotlib: a
     panel per scene, `measure` ("final_error" or "max_energy_error") against
     the run's seconds on log-log axes, one curve per method through its runs
-    in sweep order; Boost.Odeint's dashed. Runs that blew up, and errors of
-    0 or none, are left out. Saved as a PNG at `path` (default:
+    in sweep order; Boost.Odeint's dashed. Runs that blew up, and runs with
+    no time or an error of 0 or none, are left out. Saved as a PNG at `path` (default:
     <result["directory"]>/work_precision_<measure>.matplotlib.png).
     Returns the matplotlib Figure."""
     import os
-    import matplotlib.pyplot as plt
+    import matplotlib
+    from matplotlib.figure import Figure  # not pyplot: it would keep every figure open and show it
     rows = result["work_precision"]
     if measure not in ("final_error", "max_energy_error"):
         raise ValueError("plot_report: measure = %r; expected 'final_error' or 'max_energy_error'" % (measure,))
@@ -31,9 +32,10 @@ def plot_report(result, measure="final_error", path=None):
         raise ValueError("plot_report: the result has no runs; expected report()'s result")
     columns = min(3, len(scenes))
     lines = -(-len(scenes) // columns)
-    figure, axes = plt.subplots(lines, columns, figsize=(7.0 * columns, 4.0 * lines), squeeze=False)
+    figure = Figure(figsize=(7.0 * columns, 4.0 * lines))
+    axes = figure.subplots(lines, columns, squeeze=False)
     for ax, scene in zip(axes.flat, scenes):
-        ax.set_prop_cycle(color=plt.cm.tab20.colors)  # a report's 20-odd methods, each its own colour
+        ax.set_prop_cycle(color=matplotlib.colormaps["tab20"].colors)  # a report's 20-odd methods, each its own colour
         curves = {}
         for i, name in enumerate(rows["scene"]):
             x, y = _number(rows["seconds"][i]), _number(rows[measure][i])

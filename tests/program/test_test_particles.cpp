@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -312,11 +313,21 @@ TEST_CASE("test particles belt: planets not on bound orbits about the star are r
                          doctest::Contains(": pericentre 0 AU, inside the star; expected planets on bound orbits "
                                            "outside the star (0.005 AU)"),
                          sympl::error);
-    // Jupiter's momentum 1e300 (finite, so accepted by the state's checks): far past escape.
-    CHECK_THROWS_WITH_AS(
-        test_particles_command(with([](std::size_t i, double v) { return i == 3 ? std::string("1e300") : shortest(v); }),
-                               dir, 1, default_max_steps, said),
-        doctest::Contains("the planet jupiter starts on a heliocentric orbit with a = -"), sympl::error);
+    // Jupiter at twice its speed (escape is sqrt(2) times a circular orbit's), and at a momentum of 1e300
+    // (finite, so accepted by the state's checks, its square not).
+    for (const auto& fast : {std::function<std::string(std::size_t, double)>([](std::size_t i, double v) {
+                                 return shortest(i >= 3 && i < 6 ? 2 * v : v);
+                             }),
+                             std::function<std::string(std::size_t, double)>([](std::size_t i, double v) {
+                                 return i == 3 ? std::string("1e300") : shortest(v);
+                             })})
+        CHECK_THROWS_WITH_AS(test_particles_command(with(fast), dir, 1, default_max_steps, said),
+                             doctest::Contains("belt.toml: the planet jupiter starts at "), sympl::error);
+    CHECK_THROWS_WITH_AS(test_particles_command(with([](std::size_t i, double v) {
+                                                    return shortest(i >= 3 && i < 6 ? 2 * v : v);
+                                                }),
+                                                dir, 1, default_max_steps, said),
+                         doctest::Contains(" AU/day, at or past the escape speed 0.0"), sympl::error);
     CHECK_FALSE(fs::exists(dir / "test_particles.csv"));
     // The scene's own planets pass (the belt runs in the tests above).
     fs::remove_all(dir);

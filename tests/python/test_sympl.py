@@ -96,7 +96,7 @@ def test_the_report_figures_draw_each_methods_runs_in_sweep_order(tmp_path):
         wp = result["work_precision"]
         for line in panel.get_lines():
             rows = [k for k, m in enumerate(wp["method"]) if m == line.get_label() and wp["status"][k] == "stable"
-                    and wp[measure][k] > 0]
+                    and wp["seconds"][k] > 0 and wp[measure][k] > 0]
             # Each curve is its method's runs, in the rows' (sweep) order, at their seconds and errors.
             assert list(line.get_xdata()) == [wp["seconds"][k] for k in rows]
             assert list(line.get_ydata()) == [wp[measure][k] for k in rows]
@@ -114,7 +114,10 @@ def test_the_walk_through_of_docs_python_md_runs_as_written(tmp_path, monkeypatc
     assert blocks
     monkeypatch.chdir(tmp_path)
     walk = {}  # one namespace, as a notebook runs its cells in turn
+    import importlib.util
     for block in blocks:
+        if "plot_report" in block and importlib.util.find_spec("matplotlib") is None:
+            continue  # matplotlib is optional (README); the figures' own test skips without it too
         exec(compile(block, str(page), "exec"), walk)
 
 
