@@ -32,9 +32,8 @@ struct stepper_options {
 
 namespace detail {
 
-// The two updates of a splitting, p += h F (a kick) and q += h dT/dp (a
-// drift), plain or with compensated summation, and a kick fused with the
-// drift after it (Gould & Tobochnik eq. 3.74).
+// The two updates of a splitting, p += h F (a kick) and q += h dT/dp (a drift), plain or with
+// compensated summation, and a kick fused with the drift after it (Gould & Tobochnik eq. 3.74).
 template <class H, class State>
 struct substep_updates {
     using scalar = typename State::scalar;
