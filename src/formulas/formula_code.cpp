@@ -305,7 +305,9 @@ private:
     // the next term, where it is the first: each element is then loaded and
     // stored once, with no term waiting on the store of the one before. The
     // same additions in the same order: g[i + c] receives the carried share
-    // from term i - 1, then its own.
+    // from term i - 1, then its own. The share starts as -0.0, which adds
+    // to any double without changing a bit (round to nearest), so the first
+    // term needs no branch; the flag is read once, after the loop.
     bool carry(std::size_t loop_start, int loop_indent) {
         const auto& pending = pending_.back();
         if (written_.back() || pending.size() != 2 || pending[0].array != pending[1].array || !pending[0].offset ||
@@ -318,9 +320,8 @@ private:
         const std::string id = std::to_string(next_++);
         carried_ = {"c" + id, "h" + id, "j" + id, high.array};
         text.insert(loop_start, std::string(4 * (loop_indent + 1), ' ') + R_ + " " + carried_.value + " = (" + R_ +
-                                    ")0.0; int " + carried_.held + " = 0; long " + carried_.at + " = 0;\n");
-        line(low.element() + " = " + carried_.held + " ? (" + low.element() + " + " + carried_.value + ") + " +
-             low.sum + " : " + low.element() + " + " + low.sum + ";");
+                                    ")-0.0; int " + carried_.held + " = 0; long " + carried_.at + " = 0;\n");
+        line(low.element() + " = (" + low.element() + " + " + carried_.value + ") + " + low.sum + ";");
         line(carried_.value + " = " + high.sum + "; " + carried_.held + " = 1; " + carried_.at + " = " + high.index +
              ";");
         return true;
@@ -394,7 +395,11 @@ std::string gradient_function(const precision& r, const std::string& name, const
                               const formula& f, node::kind_t wrt, const char* sign) {
     writer w(r.real, r.builtin_suffix);
     const std::string R = r.real;
-    w.line("for (long j = 0; j < n; ++j) out[j] = (" + R + ")0.0;");
+    // Zeroed four at a time: -O2 does not unroll a loop of unknown length,
+    // and a call to memset costs more than the stores on short states.
+    w.line("long j = 0;");
+    w.line("for (; j + 4 <= n; j += 4) out[j] = out[j + 1] = out[j + 2] = out[j + 3] = (" + R + ")0.0;");
+    w.line("for (; j < n; ++j) out[j] = (" + R + ")0.0;");
     if (w.depends(*f.root, wrt)) {
         w.line("const " + R + " seed = (" + R + ")" + sign + "1.0;");
         w.adjoint(*f.root, "seed", wrt, "out");
