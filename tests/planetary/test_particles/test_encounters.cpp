@@ -18,12 +18,16 @@
 //       behind the joined kick: its logs are those of a run stepped one step
 //       per call (no joins) to 1e-9 relative, on a planet heavy enough
 //       (1e-3) that a kick's share left in moves them by 1e-6; and
-//       tracking only watches: the run is the untracked one's, bit for bit.
+//       tracking only watches: the run is the untracked one's, bit for bit;
+//   (g) a pericentre passed inside the star's radius within a step (the
+//       ends outside it) is a collision, logged at that step's end with the
+//       orbit's pericentre distance, at steps from 0.001 to 2.
 #include <doctest/doctest.h>
 
 #include <array>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -206,6 +210,57 @@ TEST_CASE("encounters: a particle in the star or not finite is removed, the rest
     CHECK(lost[1].particle == 1);
     CHECK(lost[1].reason == loss_reason::non_finite);
     CHECK(wh.test_particles().size() == 64);
+}
+
+TEST_CASE("encounters: a pericentre inside the star within a step is a collision, at any dt") {
+    // The star's radius is 5e-3. Particle 0: a = 1.5, pericentre 1e-3 (inside),
+    // from its apocentre, so it passes pericentre at half its period
+    // pi 1.5^1.5; 1: a radial fall from rest at r = 2, at the star at the
+    // free-fall time pi/2 sqrt(2^3 / 2) = pi; 2: pericentre 2e-2 (outside),
+    // kept. At a step's end each is outside the radius: only the orbit's
+    // pericentre, passed inside the step, tells (encounters.hpp).
+    const double a = 1.5, q = 1e-3, wide_q = 2e-2, pi = std::numbers::pi;
+    const auto apocentre = [a](double pericentre) {
+        const double e = 1 - pericentre / a, r = a * (1 + e);
+        return std::pair<V3, V3>{V3(-r, 0, 0), V3(0, -std::sqrt((1 - e) / r), 0)};  // v^2 = (2/r - 1/a)
+    };
+    const double t_pericentre = pi * std::pow(a, 1.5), t_fall = pi;
+    for (wh_coordinates coordinates : {wh_coordinates::democratic_heliocentric, wh_coordinates::jacobi})
+        for (double dt : {0.001, 0.01, 0.1, 0.5, 2.0}) {
+            const std::string name = coordinates_name(coordinates);
+            CAPTURE(name);
+            CAPTURE(dt);
+            wisdom_holman_options o;
+            o.coordinates = coordinates;
+            wisdom_holman_stepper<State> wh({1.0, planet_mass}, 1.0, method("leapfrog_kdk"), o);
+            test_particle_set<double> s;
+            for (const auto& rv : {apocentre(q), std::pair<V3, V3>{V3(2, 0, 0), V3(0, 0, 0)}, apocentre(wide_q)})
+                s.add({rv.first[0], rv.first[1], rv.first[2]}, {rv.second[0], rv.second[1], rv.second[2]});
+            wh.set_test_particles(s);
+            encounter_options e;
+            e.radius = {5e-3, 1e-6};
+            e.escape_distance = 100;
+            e.unbound_distance = 50;
+            wh.track_encounters(e);
+            State x = system_start();
+            wh.steps(x, dt, std::size_t(std::ceil(7.0 / dt)));  // past both passages (pi and 5.77)
+            const auto& lost = wh.encounters().losses();
+            REQUIRE(lost.size() == 2);
+            for (const auto& l : lost) {
+                CAPTURE(l.particle);
+                CHECK(l.reason == loss_reason::collision);
+                CHECK(l.body == 0);
+                CHECK(l.distance < 5e-3);
+                const double t_star = l.particle == 0 ? t_pericentre : t_fall;
+                CHECK(l.time >= t_star - 1e-9);  // logged at the end of the step that passed it
+                CHECK(l.time <= t_star + dt + 1e-9);
+            }
+            CHECK(lost[0].particle == 1);
+            CHECK(lost[1].particle == 0);
+            CHECK(std::fabs(lost[1].distance - q) < 1e-6 * q);  // h and E of its Kepler orbit, kept by the drifts
+            REQUIRE(wh.test_particles().size() == 1);
+            CHECK(wh.test_particles().id[0] == 2);
+        }
 }
 
 TEST_CASE("encounters: with a corrector and MEGNO, a removed particle's MEGNO goes with it") {

@@ -17,6 +17,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <numbers>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -226,7 +227,7 @@ private:
         for (std::size_t i = 0; i < n; ++i) {
             if (i % block == 0) {
                 if (wide) mark_wide(p, b, i, std::min(n, i + block), dt);
-                else mark_pairs(p, b, i, std::min(n, i + block), dt), mark_quiet(p, b, i, std::min(n, i + block));
+                else mark_pairs(p, b, i, std::min(n, i + block), dt), mark_quiet(p, b, i, std::min(n, i + block), dt);
             }
             if (quiet_[i % block] != 0) continue;
             const std::array<S, 3> r{p[0][i] - b[0][0], p[1][i] - b[1][0], p[2][i] - b[2][0]};
@@ -242,6 +243,10 @@ private:
             }
             if (!options_.radius.empty() && star < S(options_.radius[0])) {
                 lose(gone, i, id[i], loss_reason::collision, 0, star, energy);
+                continue;
+            }
+            if (const S q = pericentre_passed(p, b, i, dt); q < S(options_.radius.empty() ? 0 : options_.radius[0])) {
+                lose(gone, i, id[i], loss_reason::collision, 0, q, energy);
                 continue;
             }
             for (std::size_t k = 1; k < bodies && !gone[i]; ++k)
@@ -312,18 +317,21 @@ private:
     // Both markings, compiled for AVX2 (wide_lanes.hpp).
     SYMPL_AVX2_CLONE void mark_wide(const arrays& p, const arrays& b, std::size_t first, std::size_t last, S dt) {
         mark_pairs(p, b, first, last, dt);
-        mark_quiet<true>(p, b, first, last);
+        mark_quiet<true>(p, b, first, last, dt);
     }
 
     // quiet_[i - first] = 1 for the particles [first, last) that no check
     // below can remove or log: finite, outside the star's radius, inside the
-    // escape distance, inside the unbound distance or bound, and no pair
-    // marked, each with a margin of rounding (a vector sqrt or a contracted
+    // escape distance, inside the unbound distance or bound, no pair marked,
+    // and no pericentre about the star passed in the step that could lie
+    // inside its radius (pericentre_passed; marked here when the end
+    // recedes, the few orbits that come so close then take its full test),
+    // each with a margin of rounding (a vector sqrt or a contracted
     // product may differ from the scalar one by an ulp). The others, a few per
     // step, take every check; all particles used to, a square root, a division
     // and seven tests each, scalar. Wide: in the AVX2 clone.
     template <bool Wide = false>
-    void mark_quiet(const arrays& p, const arrays& b, std::size_t first, std::size_t last) {
+    void mark_quiet(const arrays& p, const arrays& b, std::size_t first, std::size_t last, S dt) {
         quiet_.resize(block);
         const S margin = 16 * std::numeric_limits<S>::epsilon();
         const S inner = (options_.radius.empty() ? S(0) : S(options_.radius[0])) * (1 + margin);
@@ -331,6 +339,12 @@ private:
         const S c0 = b[0][0], c1 = b[1][0], c2 = b[2][0], largest = std::numeric_limits<S>::max();
         const S *x0 = p[0].data(), *x1 = p[1].data(), *x2 = p[2].data(), *u0 = p[3].data(), *u1 = p[4].data(),
                 *u2 = p[5].data();
+        // The orbit about the star (pericentre_passed): its velocity, mu = G m_0.
+        const S cv0 = b[3][0], cv1 = b[4][0], cv2 = b[5][0];
+        const S mu = G_ * S(mass_[0]), reach = 2 * mu * inner * (1 + margin), to_bind = 2 * mu / total_gm_;
+        const S stretch = inner / (2 * mu);
+        const S turn = 4 * std::numbers::pi_v<S> * std::numbers::pi_v<S> * mu * mu * (1 - margin), dt2 = dt * dt;
+        const bool checked = inner > 0;
         S* quiet = quiet_.data();
         const std::size_t m = last - first;
         star_.resize(block);
@@ -344,9 +358,27 @@ private:
         for (std::size_t i = first; i < last; ++i) {
             const S star = star_[i - first];
             const S kinetic = (u0[i] * u0[i] + u1[i] * u1[i] + u2[i] * u2[i]) / 2, potential = total_gm_ / star;
+            // About the star: d.w, h^2 = d^2 w^2 - (d.w)^2 (Lagrange's identity:
+            // its rounding, eps d^2 w^2, is far below reach for any orbit the
+            // star's radius matters to) and bind = -2 E. The end receding
+            // (a pericentre passed, if the step began closing) or the period
+            // at most 2 |dt|, and h^2 small enough that q = h^2 / (mu (1 + e))
+            // may be < R: bound, q >= h^2 / (2 mu); unbound, e <= 1 - bind
+            // h^2 / (2 mu^2), so q < R implies h^2 (1 + R bind / (2 mu)) < 2 mu R.
+            const S d0 = x0[i] - c0, d1 = x1[i] - c1, d2 = x2[i] - c2;
+            const S w0 = u0[i] - cv0, w1 = u1[i] - cv1, w2 = u2[i] - cv2;
+            const S dw = d0 * w0 + d1 * w1 + d2 * w2, w2_ = w0 * w0 + w1 * w1 + w2 * w2;
+            const S h2 = star * star * w2_ - dw * dw;
+            const S bind = potential * to_bind - w2_;
+            // h^2 min(1, lifted) < reach as two tests: GCC 12 does not
+            // vectorise a select feeding a comparison here.
+            const S lifted = 1 + stretch * bind;
+            const bool low = (h2 < reach) | (h2 * lifted < reach);
+            const bool turns = (dw * dt > 0) | (4 * bind * bind * bind * dt2 >= turn);  // period <= 2 |dt|
+            const bool plunge = low & turns & checked;
             // The energy finite, and bound with room to spare; NaN fails every test.
             quiet[i - first] = (star > inner) & (star <= escape) & (kinetic <= largest) & (potential <= largest) &
-                                       ((star <= unbound) | (kinetic < potential * (1 - margin)))
+                                       ((star <= unbound) | (kinetic < potential * (1 - margin))) & !plunge
                                    ? S(1)
                                    : S(0);
         }
@@ -384,6 +416,35 @@ private:
         }
         if (radius > 0 && std::min(closest, end) < radius)
             lose(gone, i, id, loss_reason::collision, k, std::min(closest, end), energy);
+    }
+
+    // The pericentre distance q = h^2 / (mu (1 + e)) of particle i's orbit
+    // about the star (mu = G m_0: near the star the planets' pulls are small)
+    // at the step's end, if a pericentre was passed within the step (d.u from
+    // < 0 to > 0), or may have been (a bound orbit whose period 2 pi mu /
+    // (-2 E)^(3/2) is at most 2 |dt|: in more than half a turn a step can
+    // pass its pericentre and end closing again); infinity otherwise. The
+    // star's radius is also checked at each step's end, where a particle that
+    // passed through the star inside the step is outside it again: the
+    // Kepler drift carries it through the singularity.
+    S pericentre_passed(const arrays& p, const arrays& b, std::size_t i, S dt) const {
+        std::array<S, 3> d0, u0, d1, u1;
+        for (std::size_t c = 0; c < 3; ++c) {
+            d0[c] = previous_[c][i] - previous_bodies_[c][0], u0[c] = previous_[c + 3][i] - previous_bodies_[c + 3][0];
+            d1[c] = p[c][i] - b[c][0], u1[c] = p[c + 3][i] - b[c + 3][0];
+        }
+        const S mu = G_ * S(mass_[0]);
+        const S g0 = (d0[0] * u0[0] + d0[1] * u0[1] + d0[2] * u0[2]) * dt;
+        const S g1 = (d1[0] * u1[0] + d1[1] * u1[1] + d1[2] * u1[2]) * dt;
+        const std::array<S, 3> h{d1[1] * u1[2] - d1[2] * u1[1], d1[2] * u1[0] - d1[0] * u1[2],
+                                 d1[0] * u1[1] - d1[1] * u1[0]};
+        const S h2 = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
+        const S bind = 2 * mu / detail::norm3(d1) - (u1[0] * u1[0] + u1[1] * u1[1] + u1[2] * u1[2]);
+        using std::sqrt;
+        const bool circles = bind > 0 && std::numbers::pi_v<S> * mu <= bind * sqrt(bind) * (dt < 0 ? -dt : dt);
+        if (!((g0 < 0 && g1 > 0) || circles)) return std::numeric_limits<S>::infinity();
+        const S e2 = 1 - bind * h2 / (mu * mu);
+        return h2 / (mu * (1 + sqrt(e2 > 0 ? e2 : S(0))));
     }
 
     // a (m_k / 3 m_0)^(1/3), a body k's distance from the star at the step's end.
