@@ -205,13 +205,12 @@ std::vector<std::string> trajectory_header(const runnable_system& p) {
     return header;
 }
 
-// <scene>_<method>_energy.csv: t and the relative energy error, every k steps.
-void write_energy_series(const run_result& r, const fs::path& file, std::vector<std::unique_ptr<atomic_file>>& files) {
+// <scene>_<method>_energy.csv: t and the relative energy error every k
+// steps, written by the run as it goes (staged; nothing held in memory).
+std::unique_ptr<atomic_file> energy_series_file(const fs::path& file) {
     auto out = std::make_unique<atomic_file>(file);
     out->stream() << "t,energy_error\n" << std::setprecision(17);
-    for (const auto& [t, e] : r.energy_series) out->stream() << t << ',' << e << '\n';
-    if (!r.stable) out->stream() << "# truncated: " << r.failure << "\n";
-    files.push_back(std::move(out));
+    return out;
 }
 
 // One planned run: its trajectory file (staged), its checkpoints, its measures.
@@ -239,6 +238,11 @@ outcome run_one(const scene& s, const runnable_system& p, const planned_run& pla
         rq.output_times = s.output.times;
         rq.output_order = p.form.quadratic_kinetic ? 5 : 3;
     }
+    std::unique_ptr<atomic_file> energy_series;
+    if (rq.energy_series_every) {
+        energy_series = energy_series_file(dir / (file_name_part(s.name) + "_" + file_name_part(m.name) + "_energy.csv"));
+        rq.energy_series_file = &energy_series->stream();
+    }
     std::optional<checkpointed_method> checkpoints;
     if (s.checkpoint.every_steps) {
         checkpoints.emplace(s, m, rq.dt, resume, trajectory ? header : std::string(), p.x0.size());
@@ -249,8 +253,10 @@ outcome run_one(const scene& s, const runnable_system& p, const planned_run& pla
     if (trajectory && !o.r.stable)  // a comment line (gnuplot and CSV readers with '#' comments skip it)
         trajectory->stream() << "# truncated: " << o.r.failure << "\n";
     if (trajectory) files.push_back(std::move(trajectory));
-    if (rq.energy_series_every)
-        write_energy_series(o.r, dir / (file_name_part(s.name) + "_" + file_name_part(m.name) + "_energy.csv"), files);
+    if (energy_series) {
+        if (!o.r.stable) energy_series->stream() << "# truncated: " << o.r.failure << "\n";
+        files.push_back(std::move(energy_series));
+    }
     if (checkpoints) finished_checkpoints.push_back(std::move(*checkpoints));
     if (o.r.stable && !ref.x.empty()) o.final_error = relative_difference(o.r.final_state, ref.x);
     if (o.r.stable && s.output.loop_area) o.loop_area_error = loop_area_error(p, m, rq, s.t0, s.t_end);

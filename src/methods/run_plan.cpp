@@ -65,7 +65,8 @@ void check_run_size(const run_plan& plan, double max_steps) {
     };
     for (const planned_run& r : plan.runs) {
         if (!(r.steps <= max_steps)) refuse("method '" + r.method->name + "'", r.dt, r.steps);
-        const memory_estimate m = run_memory(*r.method, plan.degrees_of_freedom, r.steps, s.output.energy_every);
+        // `sympl run` writes its energy series as the run goes (run_scene.cpp): none held.
+        const memory_estimate m = run_memory(*r.method, plan.degrees_of_freedom, r.steps, 0);
         if (!(m.bytes <= memory_budget_bytes))
             throw scene_error(s.source + ": method '" + r.method->name + "' would hold " +
                               format_number(m.bytes / double(1 << 30), 3) + " GiB (" + m.what + "); the limit is " +
@@ -89,7 +90,7 @@ memory_estimate run_memory(const method_spec& m, std::size_t degrees_of_freedom,
     if (energy_every > 0 && steps > 0) {
         e.bytes += (steps / double(energy_every) + 1) * 2 * 16;  // a (t, error) pair, the vector's growth
         e.what += std::string(e.what.empty() ? "" : ", and ") + "an energy series of " +
-                  format_number(steps / double(energy_every) + 1, 3) + " rows (output.energy_every = " +
+                  format_number(steps / double(energy_every) + 1, 3) + " rows (energy_every = " +
                   std::to_string(energy_every) + ")";
     }
     return e;

@@ -45,8 +45,8 @@ const std::vector<double>& sweep_of(const scene& s, const scene_method& m);
 run_plan plan_runs(const scene& s, const runnable_system& p, sweep_use use);
 
 // What one run may hold where the scene sets the size (docs/reliability.md,
-// "Memory"): Gauss-Legendre's Newton matrices, the energy series `sympl run`
-// keeps until it writes it.
+// "Memory"): Gauss-Legendre's Newton matrices, the energy series a Python run
+// returns (`sympl run` writes its own as it goes, holding none).
 inline constexpr double memory_budget_bytes = double(std::uint64_t(4) << 30);
 
 // The bytes a run of m holds that its scene sizes: for Gauss-Legendre the

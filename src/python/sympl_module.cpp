@@ -31,6 +31,7 @@
 #include "python/figures.hpp"
 #include "python/force_callable.hpp"
 #include "methods/method_kinds.hpp"
+#include "methods/run_plan.hpp"
 #include "output/checkpoint.hpp"
 #include "output/format.hpp"
 #include "reading/near_names.hpp"
@@ -160,6 +161,14 @@ public:
                                    shortest(default_max_steps) + " (a larger dt or a shorter span)");
         if (adaptive_kind && !(tolerance > 0 && tolerance < 1))
             throw invalid_argument("tolerance = " + shortest(tolerance) + "; expected a value in (0, 1)");
+        // What the run would hold (Gauss's matrices; the energy series, returned as an array): as scenes' runs.
+        if (const memory_estimate held = run_memory(m, sys_.degrees_of_freedom, adaptive_kind ? 0 : (t_end - t0) / dt,
+                                                    observe && energy ? energy_every : 0);
+            !(held.bytes <= memory_budget_bytes))
+            throw invalid_argument("a run that would hold " + format_number(held.bytes / double(1 << 30), 3) + " GiB (" +
+                                   held.what + "); expected at most " +
+                                   format_number(memory_budget_bytes / double(1 << 30), 3) +
+                                   " GiB (a larger energy_every or dt, or a shorter span)");
         if (!observe && (!checkpoint.empty() || checkpoint_every || resume))
             throw invalid_argument("observe=False with checkpoints; expected checkpoints of an observed run");
         if (!observe) return final_only(m, method, rq_of(dt, tolerance, energy_every, trajectory_every, times, timing),

@@ -186,7 +186,10 @@ private:
                     diverged("relative energy error " + format_number(err, 3) + " > " + format_number(divergence_limit),
                              step, t);
                 r.max_energy_error = std::max(r.max_energy_error, err);
-                if (rq.energy_series_every && step % rq.energy_series_every == 0) r.energy_series.emplace_back(t, err);
+                if (rq.energy_series_every && step % rq.energy_series_every == 0) {
+                    if (rq.energy_series_file) *rq.energy_series_file << t << ',' << err << '\n';
+                    else r.energy_series.emplace_back(t, err);
+                }
             } else {  // no energy to watch (damped systems): watch the size of the state
                 const double size = std::max(x.q.cwiseAbs().maxCoeff(), x.p.cwiseAbs().maxCoeff());
                 if (size > growth_limit * size0) diverged("|x| grew by more than " + format_number(growth_limit), step, t);

@@ -38,6 +38,9 @@ struct run_request {
     bool observed = true;                 // the measured run (energy, trajectory, final state, blow-up)
     bool energy = false;                  // track the max relative energy error
     std::size_t energy_series_every = 0;  // record (t, energy error) every k steps
+    // Where: rows "t,error\n" written here as the run goes (`sympl run`'s
+    // staged file: nothing held); null: into run_result::energy_series.
+    std::ostream* energy_series_file = nullptr;
     std::size_t trajectory_every = 0;     // write t, q, p every k steps to *trajectory
     // Or write them at these times (sorted, in the span), interpolated inside
     // the steps by the Hermite interpolant of this order, 3 or 5 (5 needs T

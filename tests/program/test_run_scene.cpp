@@ -412,6 +412,28 @@ TEST_CASE("run: energy_every writes the energy error against time, whose largest
                          doctest::Contains("d.toml: output.energy_every: damped_oscillator has no energy"), scene_error);
 }
 
+TEST_CASE("run: the energy series is written as the run goes, none of it held") {
+    const scene s = parse_scene("system = \"pendulum\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.01\nt_end = 1000\n"
+                                "[output]\nenergy_every = 1\n",
+                                "e.toml");
+    const runnable_system p = system_of(s);
+    run_request rq = plan_runs(s, p, sweep_use::first).runs.front().request();
+    rq.energy = true;
+    rq.energy_series_every = 1;
+    std::ostringstream rows;
+    rows.precision(17);
+    rq.energy_series_file = &rows;
+    const run_result r = p.run(s.methods.front(), rq, s.t0, s.t_end, p.x0);
+    CHECK(r.energy_series.empty());
+    std::istringstream in(rows.str());
+    std::string line;
+    std::size_t count = 0;
+    double largest = 0;
+    while (std::getline(in, line)) ++count, largest = std::max(largest, std::stod(line.substr(line.find(',') + 1)));
+    CHECK(count == r.steps + 1);  // t0, then every step
+    CHECK(largest == r.max_energy_error);
+}
+
 TEST_CASE("run: the final error, and so a reference, only where it is free or asked for") {
     const std::string pendulum = "system = \"pendulum\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.01\nt_end = 10\n";
     const auto plain = run_json(pendulum, "p.toml");
