@@ -24,6 +24,7 @@
 //       orbit's pericentre distance, at steps from 0.001 to 2.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -212,21 +213,26 @@ TEST_CASE("encounters: a particle in the star or not finite is removed, the rest
     CHECK(wh.test_particles().size() == 64);
 }
 
-TEST_CASE("encounters: a pericentre inside the star within a step is a collision, at any dt") {
+TEST_CASE("encounters: a pericentre inside the star within a step is a collision, at any dt, either way") {
     // The star's radius is 5e-3. Particle 0: a = 1.5, pericentre 1e-3 (inside),
-    // from its apocentre, so it passes pericentre at half its period
-    // pi 1.5^1.5; 1: a radial fall from rest at r = 2, at the star at the
-    // free-fall time pi/2 sqrt(2^3 / 2) = pi; 2: pericentre 2e-2 (outside),
-    // kept. At a step's end each is outside the radius: only the orbit's
-    // pericentre, passed inside the step, tells (encounters.hpp).
+    // from its apocentre, so it passes pericentre at +-half its period,
+    // pi 1.5^1.5 = 5.77; 1: a radial fall from rest at r = 2, at the star at
+    // the free-fall time pi/2 sqrt(2^3 / 2) = pi; 2: pericentre 2e-2
+    // (outside), kept; 3: a hyperbolic orbit (e = 1.5) of pericentre 1e-3,
+    // there at t = 2, receding when run backward. At a step's end each is
+    // outside the radius: only the orbit's pericentre, passed inside the step,
+    // tells (encounters.hpp). dt = 8 is more than half of 0's and 1's periods:
+    // the period test's branch. Each is logged at the end of the step that
+    // passed it, with the orbit's q.
     const double a = 1.5, q = 1e-3, wide_q = 2e-2, pi = std::numbers::pi;
     const auto apocentre = [a](double pericentre) {
         const double e = 1 - pericentre / a, r = a * (1 + e);
         return std::pair<V3, V3>{V3(-r, 0, 0), V3(0, -std::sqrt((1 - e) / r), 0)};  // v^2 = (2/r - 1/a)
     };
-    const double t_pericentre = pi * std::pow(a, 1.5), t_fall = pi;
+    const auto hyperbolic = kepler_at(V3(q, 0, 0), V3(0, std::sqrt(2.5 / q), 0), -2.0);  // v_p^2 = (1 + e) / q
+    const double t_star[] = {pi * std::pow(a, 1.5), pi, 0, 2.0};
     for (wh_coordinates coordinates : {wh_coordinates::democratic_heliocentric, wh_coordinates::jacobi})
-        for (double dt : {0.001, 0.01, 0.1, 0.5, 2.0}) {
+        for (double dt : {0.001, 0.01, 0.1, 0.5, 2.0, 8.0, -0.01, -0.5, -8.0}) {
             const std::string name = coordinates_name(coordinates);
             CAPTURE(name);
             CAPTURE(dt);
@@ -234,7 +240,8 @@ TEST_CASE("encounters: a pericentre inside the star within a step is a collision
             o.coordinates = coordinates;
             wisdom_holman_stepper<State> wh({1.0, planet_mass}, 1.0, method("leapfrog_kdk"), o);
             test_particle_set<double> s;
-            for (const auto& rv : {apocentre(q), std::pair<V3, V3>{V3(2, 0, 0), V3(0, 0, 0)}, apocentre(wide_q)})
+            for (const auto& rv :
+                 {apocentre(q), std::pair<V3, V3>{V3(2, 0, 0), V3(0, 0, 0)}, apocentre(wide_q), hyperbolic})
                 s.add({rv.first[0], rv.first[1], rv.first[2]}, {rv.second[0], rv.second[1], rv.second[2]});
             wh.set_test_particles(s);
             encounter_options e;
@@ -243,21 +250,27 @@ TEST_CASE("encounters: a pericentre inside the star within a step is a collision
             e.unbound_distance = 50;
             wh.track_encounters(e);
             State x = system_start();
-            wh.steps(x, dt, std::size_t(std::ceil(7.0 / dt)));  // past both passages (pi and 5.77)
-            const auto& lost = wh.encounters().losses();
-            REQUIRE(lost.size() == 2);
-            for (const auto& l : lost) {
+            wh.steps(x, dt, std::size_t(std::ceil(7.0 / std::fabs(dt))));  // past every passage
+            std::vector<std::uint64_t> collided;
+            for (const auto& l : wh.encounters().losses()) {
                 CAPTURE(l.particle);
-                CHECK(l.reason == loss_reason::collision);
+                if (l.reason != loss_reason::collision) {
+                    CHECK(l.particle == 3);  // backward, it leaves: unbound past 50
+                    CHECK(dt < 0);
+                    continue;
+                }
+                collided.push_back(l.particle);
                 CHECK(l.body == 0);
+                CHECK(std::fabs(l.time) >= t_star[l.particle] - 1e-9);
+                CHECK(std::fabs(l.time) <= t_star[l.particle] + std::fabs(dt) + 1e-9);
                 CHECK(l.distance < 5e-3);
-                const double t_star = l.particle == 0 ? t_pericentre : t_fall;
-                CHECK(l.time >= t_star - 1e-9);  // logged at the end of the step that passed it
-                CHECK(l.time <= t_star + dt + 1e-9);
+                // The ellipse's q as its Kepler orbit has it. (The hyperbola's
+                // drift through its passage in one step of 8 keeps h to 1%:
+                // kepler_drift's own error there, docs/planetary.md.)
+                if (l.particle == 0) CHECK(std::fabs(l.distance - q) < 1e-9 * q);
             }
-            CHECK(lost[0].particle == 1);
-            CHECK(lost[1].particle == 0);
-            CHECK(std::fabs(lost[1].distance - q) < 1e-6 * q);  // h and E of its Kepler orbit, kept by the drifts
+            std::sort(collided.begin(), collided.end());
+            CHECK(collided == (dt > 0 ? std::vector<std::uint64_t>{0, 1, 3} : std::vector<std::uint64_t>{0, 1}));
             REQUIRE(wh.test_particles().size() == 1);
             CHECK(wh.test_particles().id[0] == 2);
         }

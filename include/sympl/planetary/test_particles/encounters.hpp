@@ -7,10 +7,13 @@
 // method (events.hpp), logged with the distance in Hill radii
 // a (m / 3 m_0)^(1/3) (Hill 1878; a the planet's distance from the star at
 // the step's end); a particle within a body's radius (at a step's end or at
-// the located approach), beyond the escape distance from the star, unbound
-// beyond the unbound distance (v^2/2 - G M / r > 0, v about the barycentre,
-// r from the star, M the total mass), or non-finite is removed and logged, never lost silently.
-// The derivation of the relative velocities in each coordinate system is in
+// the located approach), within the star's radius at a step's end or at a
+// pericentre passed inside the step (the orbit about the star: Murray &
+// Dermott, Solar System Dynamics, 1999, ch. 2), beyond the escape distance
+// from the star, unbound beyond the unbound distance (v^2/2 - G M / r > 0,
+// v about the barycentre, r from the star, M the total mass), or non-finite
+// is removed and logged, never lost silently. The relative velocities in
+// each coordinate system and the screens' bounds are derived in
 // docs/planetary.md ("Close encounters and losses").
 #include <array>
 #include <cmath>
@@ -266,16 +269,10 @@ private:
     }
 
     // look_[(k - 1) * block + i - first] for particles [first, last): whether
-    // the pair with body k needs approach(). The interpolant's d.d' at the
-    // step's ends is d0.u0 and d1.u1; most pairs recede or close over the
-    // whole step (no sign change from < 0 to > 0: no minimum inside); of the
-    // others, approach() looks only where min(|d0|, |d1|) - 2 |dt| max(|u0|,
-    // |u1|) < reach, which implies min(d0^2, d1^2) < 2 reach^2 + 8 dt^2
-    // max(u0^2, u1^2) ((a + b)^2 <= 2 a^2 + 2 b^2), tested here; and one
-    // whose end is farther than its radius cannot have collided there. The
-    // squares are compared with a margin of rounding. A loop per body over
-    // particles in arrays, with no branch and no square root, in SIMD lanes
-    // (docs/planetary.md).
+    // the pair with body k needs approach(): a minimum of d.d' inside the
+    // step near enough to reach, or the end inside the radius (the bound in
+    // squares, with a margin of rounding: docs/planetary.md). One loop per
+    // body, no branch, no square root, in SIMD lanes.
     void mark_pairs(const arrays& p, const arrays& b, std::size_t first, std::size_t last, S dt) {
         const std::size_t bodies = b[0].size();
         if (bodies < 2) return;
@@ -294,10 +291,8 @@ private:
             const S *y0 = p[0].data(), *y1 = p[1].data(), *y2 = p[2].data(), *v0 = p[3].data(), *v1 = p[4].data(),
                     *v2 = p[5].data();
             S* look = look_.data() + (k - 1) * block;
-            // The mark is a number chosen by a select: GCC 12 vectorises that
-            // with SSE2, not a bool converted to an integer. The marks do not
-            // alias the coordinates, and SYMPL_ARRAYS_APART says so (13
-            // arrays are more than GCC checks at run time).
+            // Marks are doubles chosen by a select (GCC 12 with SSE2 vectorises no
+            // bool-to-integer); SYMPL_ARRAYS_APART: they alias no coordinate.
             SYMPL_ARRAYS_APART
             for (std::size_t i = first; i < last; ++i) {
                 const S a0 = x0[i] - q0[0], a1 = x1[i] - q0[1], a2 = x2[i] - q0[2];
@@ -323,13 +318,10 @@ private:
     // quiet_[i - first] = 1 for the particles [first, last) that no check
     // below can remove or log: finite, outside the star's radius, inside the
     // escape distance, inside the unbound distance or bound, no pair marked,
-    // and no pericentre about the star passed in the step that could lie
-    // inside its radius (pericentre_passed; marked here when the end
-    // recedes, the few orbits that come so close then take its full test),
-    // each with a margin of rounding (a vector sqrt or a contracted
-    // product may differ from the scalar one by an ulp). The others, a few per
-    // step, take every check; all particles used to, a square root, a division
-    // and seven tests each, scalar. Wide: in the AVX2 clone.
+    // no pericentre inside the star possibly passed (pericentre_passed), each
+    // with a margin of rounding (a vector sqrt or a contracted product may
+    // differ from the scalar one by an ulp). The few others take every check,
+    // scalar. Wide: in the AVX2 clone.
     template <bool Wide = false>
     void mark_quiet(const arrays& p, const arrays& b, std::size_t first, std::size_t last, S dt) {
         quiet_.resize(block);
@@ -358,23 +350,18 @@ private:
         for (std::size_t i = first; i < last; ++i) {
             const S star = star_[i - first];
             const S kinetic = (u0[i] * u0[i] + u1[i] * u1[i] + u2[i] * u2[i]) / 2, potential = total_gm_ / star;
-            // About the star: d.w, h^2 = d^2 w^2 - (d.w)^2 (Lagrange's identity:
-            // its rounding, eps d^2 w^2, is far below reach for any orbit the
-            // star's radius matters to) and bind = -2 E. The end receding
-            // (a pericentre passed, if the step began closing) or the period
-            // at most 2 |dt|, and h^2 small enough that q = h^2 / (mu (1 + e))
-            // may be < R: bound, q >= h^2 / (2 mu); unbound, e <= 1 - bind
-            // h^2 / (2 mu^2), so q < R implies h^2 (1 + R bind / (2 mu)) < 2 mu R.
+            // About the star (pericentre_passed; bounds in docs/planetary.md):
+            // the end receding or the period at most 2 |dt|, and h^2 (lowered
+            // by its rounding, h^2 = d^2 w^2 - (d.w)^2) small enough for q < R;
+            // bind = -2E, raised or lowered by its rounding where that flags more.
             const S d0 = x0[i] - c0, d1 = x1[i] - c1, d2 = x2[i] - c2;
             const S w0 = u0[i] - cv0, w1 = u1[i] - cv1, w2 = u2[i] - cv2;
             const S dw = d0 * w0 + d1 * w1 + d2 * w2, w2_ = w0 * w0 + w1 * w1 + w2 * w2;
-            const S h2 = star * star * w2_ - dw * dw;
-            const S bind = potential * to_bind - w2_;
-            // h^2 min(1, lifted) < reach as two tests: GCC 12 does not
-            // vectorise a select feeding a comparison here.
-            const S lifted = 1 + stretch * bind;
-            const bool low = (h2 < reach) | (h2 * lifted < reach);
-            const bool turns = (dw * dt > 0) | (4 * bind * bind * bind * dt2 >= turn);  // period <= 2 |dt|
+            const S h2 = star * star * w2_ * (1 - 16 * margin) - dw * dw;
+            const S pull = potential * to_bind, bind = pull - w2_, slack = margin * (pull + w2_);
+            const S lifted = 1 + stretch * (bind - slack), high = bind + slack;
+            const bool low = (h2 < reach) | (h2 * lifted < reach);  // h^2 min(1, lifted): GCC 12 keeps two tests in lanes
+            const bool turns = (dw * dt > 0) | (4 * high * high * high * dt2 >= turn);
             const bool plunge = low & turns & checked;
             // The energy finite, and bound with room to spare; NaN fails every test.
             quiet[i - first] = (star > inner) & (star <= escape) & (kinetic <= largest) & (potential <= largest) &
@@ -419,14 +406,10 @@ private:
     }
 
     // The pericentre distance q = h^2 / (mu (1 + e)) of particle i's orbit
-    // about the star (mu = G m_0: near the star the planets' pulls are small)
-    // at the step's end, if a pericentre was passed within the step (d.u from
-    // < 0 to > 0), or may have been (a bound orbit whose period 2 pi mu /
-    // (-2 E)^(3/2) is at most 2 |dt|: in more than half a turn a step can
-    // pass its pericentre and end closing again); infinity otherwise. The
-    // star's radius is also checked at each step's end, where a particle that
-    // passed through the star inside the step is outside it again: the
-    // Kepler drift carries it through the singularity.
+    // about the star (mu = G m_0) at the step's end, if a pericentre was
+    // passed within the step (d.u from < 0 to > 0) or may have been (period
+    // at most 2 |dt|); infinity otherwise. The Kepler drift carries a
+    // particle through the star's centre: its ends alone miss the passage.
     S pericentre_passed(const arrays& p, const arrays& b, std::size_t i, S dt) const {
         std::array<S, 3> d0, u0, d1, u1;
         for (std::size_t c = 0; c < 3; ++c) {
@@ -438,13 +421,17 @@ private:
         const S g1 = (d1[0] * u1[0] + d1[1] * u1[1] + d1[2] * u1[2]) * dt;
         const std::array<S, 3> h{d1[1] * u1[2] - d1[2] * u1[1], d1[2] * u1[0] - d1[0] * u1[2],
                                  d1[0] * u1[1] - d1[1] * u1[0]};
-        const S h2 = h[0] * h[0] + h[1] * h[1] + h[2] * h[2];
-        const S bind = 2 * mu / detail::norm3(d1) - (u1[0] * u1[0] + u1[1] * u1[1] + u1[2] * u1[2]);
+        const S h2 = h[0] * h[0] + h[1] * h[1] + h[2] * h[2], r = detail::norm3(d1);
+        const S bind = 2 * mu / r - (u1[0] * u1[0] + u1[1] * u1[1] + u1[2] * u1[2]);
         using std::sqrt;
         const bool circles = bind > 0 && std::numbers::pi_v<S> * mu <= bind * sqrt(bind) * (dt < 0 ? -dt : dt);
         if (!((g0 < 0 && g1 > 0) || circles)) return std::numeric_limits<S>::infinity();
-        const S e2 = 1 - bind * h2 / (mu * mu);
-        return h2 / (mu * (1 + sqrt(e2 > 0 ? e2 : S(0))));
+        // e from the eccentricity vector w x h / mu - d / |d|, which keeps its
+        // digits on a near-circular orbit (sqrt(1 - bind h^2 / mu^2) loses half).
+        const std::array<S, 3> e{(u1[1] * h[2] - u1[2] * h[1]) / mu - d1[0] / r,
+                                 (u1[2] * h[0] - u1[0] * h[2]) / mu - d1[1] / r,
+                                 (u1[0] * h[1] - u1[1] * h[0]) / mu - d1[2] / r};
+        return h2 / (mu * (1 + detail::norm3(e)));
     }
 
     // a (m_k / 3 m_0)^(1/3), a body k's distance from the star at the step's end.
