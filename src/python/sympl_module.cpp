@@ -161,14 +161,9 @@ public:
                                    shortest(default_max_steps) + " (a larger dt or a shorter span)");
         if (adaptive_kind && !(tolerance > 0 && tolerance < 1))
             throw invalid_argument("tolerance = " + shortest(tolerance) + "; expected a value in (0, 1)");
-        // What the run would hold (Gauss's matrices; the energy series, returned as an array): as scenes' runs.
-        if (const memory_estimate held = run_memory(m, sys_.degrees_of_freedom, adaptive_kind ? 0 : (t_end - t0) / dt,
-                                                    observe && energy ? energy_every : 0);
-            !(held.bytes <= memory_budget_bytes))
-            throw invalid_argument("a run that would hold " + format_number(held.bytes / double(1 << 30), 3) + " GiB (" +
-                                   held.what + "); expected at most " +
-                                   format_number(memory_budget_bytes / double(1 << 30), 3) +
-                                   " GiB (a larger energy_every or dt, or a shorter span)");
+        check_memory(m, t_end - t0, dt, observe && energy && sys_.energy ? energy_every : 0,
+                     observe ? trajectory_every : 0,
+                     observe && py::hasattr(times, "__len__") ? py::len(times) : 0);  // a bad `times` is named below
         if (!observe && (!checkpoint.empty() || checkpoint_every || resume))
             throw invalid_argument("observe=False with checkpoints; expected checkpoints of an observed run");
         if (!observe) return final_only(m, method, rq_of(dt, tolerance, energy_every, trajectory_every, times, timing),
@@ -205,13 +200,35 @@ public:
         py::dict out = ending_of(method, r);
         out["max_energy_error"] = r.max_energy_error;
         out["seconds"] = r.seconds;
-        std::vector<double> series;
-        for (const auto& [t, e] : r.energy_series) series.insert(series.end(), {t, e});
         py::array_t<double> s({py::ssize_t(r.energy_series.size()), py::ssize_t(2)});
-        std::copy(series.begin(), series.end(), s.mutable_data());
+        double* row = s.mutable_data();
+        for (const auto& [t, e] : r.energy_series) *row++ = t, *row++ = e;
         out["energy_series"] = s;
         out["trajectory"] = rows_of(trajectory.str(), 1 + sys_.x0.size());
         return out;
+    }
+
+    // What a run would hold, refused above the scenes' budget with the
+    // figures: Gauss's matrices, the energy series (a vector of pairs, then
+    // its array: 48 bytes a row) and the trajectory (17-digit text, then its
+    // array: 33 bytes a number). The rows are counted for steps in physical
+    // time; an adaptive or LogH run's steps are its own and are not.
+    void check_memory(const method_spec& m, double span, double dt, std::size_t energy_every,
+                      std::size_t trajectory_every, std::size_t times) const {
+        const double steps = steps_in_physical_time(m) ? span / dt : 0;
+        memory_estimate held = run_memory(m, sys_.degrees_of_freedom, steps, energy_every);
+        if (energy_every) held.bytes += (steps / double(energy_every) + 1) * 16;
+        const double rows = trajectory_every && steps > 0 ? steps / double(trajectory_every) + 1 : double(times);
+        if (rows > 0) {
+            held.bytes += rows * double(1 + sys_.x0.size()) * 33;
+            held.what += std::string(held.what.empty() ? "" : ", and ") + "a trajectory of " + format_number(rows, 3) +
+                         " rows";
+        }
+        if (!(held.bytes <= memory_budget_bytes))
+            throw invalid_argument("a run that would hold " + format_number(held.bytes / double(1 << 30), 3) + " GiB (" +
+                                   held.what + "); expected at most " +
+                                   format_number(memory_budget_bytes / double(1 << 30), 3) +
+                                   " GiB (a larger energy_every, trajectory_every or dt, or a shorter span)");
     }
 
     // A run's checkpoints (checkpoint.hpp): written to `file` every `every`

@@ -61,8 +61,10 @@ def test_errors_are_value_errors_with_the_programs_messages():
     with pytest.raises(ValueError, match="a run of 1e.15 steps; expected at most 1e.09"):
         sympl.System("pendulum").run("leapfrog_kdk", t_end=1e12, dt=1e-3)
     # What a run would hold is refused before anything is allocated, with the figures.
-    with pytest.raises(ValueError, match=r"a run that would hold 11.9 GiB \(an energy series of 4e\+08 rows \(energy_every = 1\)\)"):
+    with pytest.raises(ValueError, match=r"a run that would hold 17.9 GiB \(an energy series of 4e\+08 rows \(energy_every = 1\)\)"):
         sympl.System("pendulum").run("leapfrog_kdk", t_end=4e6, dt=0.01, energy_every=1)
+    with pytest.raises(ValueError, match=r"would hold 36.9 GiB \(a trajectory of 4e\+08 rows\)"):
+        sympl.System("pendulum").run("leapfrog_kdk", t_end=4e6, dt=0.01, trajectory_every=1)
     with pytest.raises(ValueError, match=r"would hold 119 GiB \(Gauss-Legendre's Jacobian and Newton matrix"):
         sympl.System("fpu_beta", {"n": 20000}).run("gauss_6", t_end=1.0, dt=0.1)
     with pytest.raises(ValueError, match="V, column 6: unknown name 'z'"):
