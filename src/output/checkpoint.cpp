@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include "output/format.hpp"
@@ -73,6 +74,13 @@ struct body_reader {
         std::uint64_t v = 0;
         if (!(l >> v) || v > largest) refuse(file, std::string("a bad count in '") + key + "'");
         return v;
+    }
+    // Nothing may follow the last line (the checksum covers whatever does).
+    void end(const char* last) {
+        const std::string rest(std::istreambuf_iterator<char>(in), {});
+        if (!rest.empty())
+            refuse(file, std::string("holds ") + std::to_string(rest.size()) + " more bytes after '" + last +
+                             "'; expected its end");
     }
     std::vector<double> numbers(const char* key) {
         auto l = line(key);
@@ -199,6 +207,7 @@ checkpoint_record read_checkpoint(const fs::path& file, const std::string& scene
         auto l = b.line("trajectory_bytes");
         r.trajectory_bytes = b.count(l, "trajectory_bytes", UINT64_MAX / 2);
     }
+    b.end("trajectory_bytes");
     return r;
 }
 

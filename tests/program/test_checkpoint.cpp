@@ -105,6 +105,11 @@ TEST_CASE("checkpoint: truncated, corrupted, foreign or mismatched files are ref
          "another format version");
     says(refused_for(good, fnv1a_hex("another scene"), r.dt), "belongs to another scene");
     says(refused_for(good, r.scene_hash, 0.2), "another dt");
+    // A line after the last field, its checksum recomputed (fuzz_checkpoint found it accepted).
+    const std::string body = good.substr(good.find('\n') + 1, good.rfind("checksum ") - good.find('\n') - 1) + "X\n";
+    says(refused_for(good.substr(0, good.find('\n') + 1) + body + "checksum " + fnv1a_hex(body) + "\n", r.scene_hash,
+                     r.dt),
+         "holds 2 more bytes after 'trajectory_bytes'; expected its end");
     write(dir / "bad", good);
     checkpoint_record other = r;
     other.method = "rk4";
