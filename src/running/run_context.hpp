@@ -93,9 +93,18 @@ stepper_memory<std::vector<double>> to_record(const stepper_memory<V>& m) {
     return {as_std(m.force), as_std(m.velocity), as_std(m.q_error), as_std(m.p_error),
             m.force_fresh,   m.velocity_fresh,   m.force_evaluations, m.velocity_evaluations};
 }
+// A fixed-size vector takes exactly its size (a checkpoint's fields are
+// checked against the state, not against LogH's one more or a stepper's
+// residuals: 2 numbers into a 3-vector read past them, found by fuzz_checkpoint);
+// a dynamic one is resized by the stepper's first step when it does not fit.
 template <class V>
 stepper_memory<V> from_record(const stepper_memory<std::vector<double>>& m) {
     const auto as_vector = [](const std::vector<double>& v) {
+        if constexpr (V::SizeAtCompileTime != Eigen::Dynamic)
+            if (v.size() != std::size_t(V::SizeAtCompileTime))
+                throw invalid_argument("checkpoint: the stepper's memory holds a vector of " + std::to_string(v.size()) +
+                                       " numbers; expected " + std::to_string(V::SizeAtCompileTime) +
+                                       "; not resumed from (remove it to start over)");
         return V(Eigen::Map<const Eigen::VectorXd>(v.data(), Eigen::Index(v.size())));
     };
     return {as_vector(m.force), as_vector(m.velocity), as_vector(m.q_error), as_vector(m.p_error),

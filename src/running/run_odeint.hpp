@@ -158,6 +158,8 @@ struct odeint_run {
         template <class Self, class List>
         static void carried_fields(Self& self, List& l) {
             l.number(self.t), l.number(self.dt);
+            l.check(std::isfinite(self.t) && std::isfinite(self.dt) && self.dt > 0 && self.t + self.dt > self.t,
+                    "holds a time and step that cannot step");
             l.whole(self.evaluations, "holds a bad count of evaluations");
             if constexpr (std::is_same_v<Stepper, bulirsch_stoer_vector>) {
                 bulirsch_stoer_history history{self.stepper, self.size};

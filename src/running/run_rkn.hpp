@@ -4,6 +4,7 @@
 // its estimate unused) or with the step size controlled to the request's
 // tolerance (absolute = relative), like the Odeint controlled steppers.
 // Separable Hamiltonians with T quadratic in p only.
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -49,6 +50,10 @@ struct run_kind<method_kind::dprkn> {
             controller_state<double>& s = self.state;
             control_summary& m = s.summary;
             l.number(s.t), l.number(s.dt), l.number(s.previous_error);
+            // A step that cannot move t (t = -1e300) or a NaN step would never end the run.
+            l.check(std::isfinite(s.t) && std::isfinite(s.dt) && s.dt > 0 && s.t + s.dt > s.t &&
+                        s.previous_error >= 0 && std::isfinite(s.previous_error),
+                    "holds a controller state that cannot step (t, dt, error)");
             l.whole(m.accepted, "holds a bad count of accepted steps");
             l.whole(m.rejected, "holds a bad count of rejected steps");
             l.number(m.t), l.number(m.dt_smallest), l.number(m.dt_largest), l.number(m.largest_error);

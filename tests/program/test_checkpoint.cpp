@@ -6,10 +6,15 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
+#include <tuple>
+#include <optional>
 
 #include <sympl/core/error.hpp>
 
+#include "methods/run_plan.hpp"
 #include "output/checkpoint.hpp"
+#include "reading/scene.hpp"
 #include "scratch_directory.hpp"
 
 namespace test_program_test_checkpoint {  // one per file: the tests build in batches (CMakeLists.txt)
@@ -126,6 +131,37 @@ TEST_CASE("checkpoint: truncated, corrupted, foreign or mismatched files are ref
     says(refusal(dir / "a_directory", r, r.scene_hash, r.dt), "is a directory; expected a regular file");
     says(refusal("/dev/zero", r, r.scene_hash, r.dt), "is a character device; expected a regular file");
     fs::remove_all(dir);
+}
+
+TEST_CASE("checkpoint: a stepper's memory of the wrong size is refused, not read past") {
+    // Kepler's state is fixed-size: a table's memory holds 2 numbers a
+    // vector, LogH's 3 (q and t). The record's fields pass
+    // check_checkpoint_fields (half the state, or one more, or none) whatever
+    // the kind; the stepper's own size is held at restoring (fuzz_checkpoint
+    // found 2 numbers read as LogH's 3, and an empty q_error as a table's 2).
+    for (const auto& [method, cut, expected] : {std::tuple{"logh(leapfrog_kdk)", "force", "expected 3"},
+                                                std::tuple{"blanes_moan_s6", "q_error", "expected 2"}}) {
+        CAPTURE(method);
+        const scene s = parse_scene(std::string("system = \"kepler\"\nmethods = [\"") + method +
+                                        "\"]\nt_end = 3\ndt = 0.01\n",
+                                    "k.toml");
+        const runnable_system p = system_of(s);
+        run_request rq = plan_runs(s, p, sweep_use::first).runs.front().request();
+        std::optional<checkpoint_record> first;
+        rq.checkpoint.every_steps = 50;
+        rq.checkpoint.save = [&](checkpoint_record& r) {
+            if (!first) first = r;
+        };
+        p.run(s.methods.front(), rq, s.t0, s.t_end, p.x0);
+        REQUIRE(first);
+        checkpoint_record r = *first;
+        std::vector<double>& v = std::string(cut) == "force" ? r.memory.force : r.memory.q_error;
+        v.pop_back();
+        rq.checkpoint.save = nullptr;
+        rq.checkpoint.resume = &r;
+        CHECK_THROWS_WITH_AS(p.run(s.methods.front(), rq, s.t0, s.t_end, p.x0), doctest::Contains(expected),
+                             sympl::error);
+    }
 }
 
 TEST_CASE("checkpoint: a record's fields are held to the run it resumes, each refusal naming the field") {
