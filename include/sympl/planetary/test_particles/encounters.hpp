@@ -1,20 +1,12 @@
 #pragma once
 // Close encounters and losses of test particles (test_particles.hpp),
 // checked after every step of a Wisdom-Holman run: each particle-planet
-// pair's closest approach inside the step located on the step's cubic
-// Hermite interpolant of their separation (Hairer, Norsett & Wanner, Solving
-// ODE I, eq. II.6.7; hermite_interpolant.hpp) as the root of d.d' by Brent's
-// method (events.hpp), logged with the distance in Hill radii
-// a (m / 3 m_0)^(1/3) (Hill 1878; a the planet's distance from the star at
-// the step's end); a particle within a body's radius (at a step's end or at
-// the located approach), within the star's radius at a step's end or at a
-// pericentre passed inside the step (the orbit about the star: Murray &
-// Dermott, Solar System Dynamics, 1999, ch. 2), beyond the escape distance
-// from the star, unbound beyond the unbound distance (v^2/2 - G M / r > 0,
-// v about the barycentre, r from the star, M the total mass), or non-finite
-// is removed and logged, never lost silently. The relative velocities in
-// each coordinate system and the screens' bounds are derived in
-// docs/planetary.md ("Close encounters and losses").
+// closest approach inside the step located on the cubic Hermite of their
+// separation (Hairer, Norsett & Wanner, Solving ODE I, eq. II.6.7) by Brent's
+// method, logged in Hill radii (Hill 1878); collisions (with the star also at
+// a pericentre passed inside the step: Murray & Dermott 1999, ch. 2), escapes,
+// unbound and non-finite particles removed and logged, never lost silently.
+// The checks, their order and the screens' bounds: docs/planetary.md.
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -186,8 +178,7 @@ public:
 
     // After a step of dt ending at particles and bodies (star first); gone[i]
     // set for each particle removed (logged). The ends become the next step's
-    // start: copied, or taken by swapping with p (after_step_taking: p
-    // leaves with the previous start, for its owner to overwrite).
+    // start: copied, or swapped with p (after_step_taking: p leaves with the old start).
     void after_step(const arrays& p, const arrays& b, const std::vector<std::uint64_t>& id, S dt,
                     std::vector<char>& gone) {
         const std::size_t losses_before = losses_.size();
@@ -315,13 +306,10 @@ private:
         mark_quiet<true>(p, b, first, last, dt);
     }
 
-    // quiet_[i - first] = 1 for the particles [first, last) that no check
-    // below can remove or log: finite, outside the star's radius, inside the
-    // escape distance, inside the unbound distance or bound, no pair marked,
-    // no pericentre inside the star possibly passed (pericentre_passed), each
-    // with a margin of rounding (a vector sqrt or a contracted product may
-    // differ from the scalar one by an ulp). The few others take every check,
-    // scalar. Wide: in the AVX2 clone.
+    // quiet_[i - first] = 1 for the particles [first, last) no check below can
+    // remove or log (each test with a margin of rounding: a vector sqrt or a
+    // contracted product may differ by an ulp); the few others take every
+    // check, scalar. Wide: in the AVX2 clone.
     template <bool Wide = false>
     void mark_quiet(const arrays& p, const arrays& b, std::size_t first, std::size_t last, S dt) {
         quiet_.resize(block);
@@ -405,11 +393,9 @@ private:
             lose(gone, i, id, loss_reason::collision, k, std::min(closest, end), energy);
     }
 
-    // The pericentre distance q = h^2 / (mu (1 + e)) of particle i's orbit
-    // about the star (mu = G m_0) at the step's end, if a pericentre was
-    // passed within the step (d.u from < 0 to > 0) or may have been (period
-    // at most 2 |dt|); infinity otherwise. The Kepler drift carries a
-    // particle through the star's centre: its ends alone miss the passage.
+    // q = h^2 / (mu (1 + e)) of particle i's orbit about the star (mu = G m_0)
+    // at the step's end if a pericentre was, or may have been, passed within
+    // the step (d.u from < 0 to > 0, or period <= 2 |dt|); infinity otherwise.
     S pericentre_passed(const arrays& p, const arrays& b, std::size_t i, S dt) const {
         std::array<S, 3> d0, u0, d1, u1;
         for (std::size_t c = 0; c < 3; ++c) {
