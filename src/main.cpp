@@ -21,6 +21,7 @@
 
 #include "commands/check_table.hpp"
 #include "commands/ensemble_run.hpp"
+#include "output/format.hpp"
 #include "output/interrupt.hpp"
 #include "commands/listings.hpp"
 #include "output/mpi_exchange.hpp"
@@ -160,7 +161,8 @@ int main(int argc, char** argv) {
         const CLI::App& all = app;
         for (const CLI::App* sub : all.get_subcommands([](const CLI::App*) { return true; })) names.push_back(sub->get_name());
         if (std::find(names.begin(), names.end(), argv[1]) == names.end()) {
-            std::cerr << "sympl: unknown command '" << argv[1] << "'; " << expected_one_of(argv[1], names) << "\n";
+            std::cerr << "sympl: unknown command '" << printable(argv[1]) << "'; " << printable(expected_one_of(argv[1], names))
+                      << "\n";
             return 2;
         }
     }
@@ -169,7 +171,7 @@ int main(int argc, char** argv) {
     } catch (const CLI::CallForHelp& e) {
         return app.exit(e);
     } catch (const CLI::ParseError& e) {
-        std::cerr << "sympl: " << e.what() << "\n";
+        std::cerr << "sympl: " << printable_lines(e.what()) << "\n";
         return 2;
     }
     exchange ranks;  // the MPI ranks of `ensemble`, `report` and a [test_particles] `run` under mpirun
@@ -179,7 +181,7 @@ int main(int argc, char** argv) {
             ranks.size > 1 ? " (rank " + std::to_string(ranks.rank) + " of " + std::to_string(ranks.size) + ")" : "";
         // One write(2), so that Open MPI's abort banner from another rank cannot
         // land inside the line (it did in CI: "sympl (rank 0 of 3)<banner>: ...").
-        const std::string line = "sympl" + who + ": " + what + "\n";
+        const std::string line = "sympl" + who + ": " + printable_lines(what) + "\n";
         for (std::size_t done = 0; done < line.size();) {
             const ssize_t n = ::write(2, line.data() + done, line.size() - done);
             if (n <= 0) break;

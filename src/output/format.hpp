@@ -1,5 +1,6 @@
 #pragma once
 // Numbers as text, the same everywhere the program prints or writes one.
+#include <algorithm>
 #include <charconv>
 #include <iomanip>
 #include <sstream>
@@ -43,6 +44,43 @@ inline std::string counter(std::size_t i, std::size_t n) {
     std::ostringstream text;
     text << '[' << i << '/' << n << "] ";
     return text.str();
+}
+
+// A message as the program prints it: one line, as written.
+// Control characters a name may hold (a NUL that would end the message, a
+// newline that would split it, a terminal's escape) are written as \0, \n,
+// \x1b; a message past 2000 characters (a megabyte name quoted in it) keeps
+// its first 1200 and last 600 with the count cut between them.
+inline std::string printable(const std::string& what) {
+    static constexpr char hex[] = "0123456789abcdef";
+    std::string out;
+    out.reserve(std::min<std::size_t>(what.size(), 4096));
+    for (const char c : what) {
+        const auto u = static_cast<unsigned char>(c);
+        if (u >= 0x20 && u != 0x7f) out += c;
+        else if (c == '\n') out += "\\n";
+        else if (c == '\t') out += "\\t";
+        else if (c == '\0') out += "\\0";
+        else out += std::string("\\x") + hex[u >> 4] + hex[u & 15];
+    }
+    constexpr std::size_t longest = 2000, head = 1200, tail = 600;
+    if (out.size() <= longest) return out;
+    return out.substr(0, head) + " ... (" + std::to_string(out.size() - head - tail) + " characters cut) ... " +
+           out.substr(out.size() - tail);
+}
+
+// Each line of a message made printable (main's last word on any error: a
+// path or name that reached a message unescaped is escaped there).
+inline std::string printable_lines(const std::string& what) {
+    std::string out;
+    std::size_t from = 0;
+    for (std::size_t lines = 0;; ++lines) {
+        const std::size_t end = what.find('\n', from);
+        if (lines == 1000) return out + "\n... (" + std::to_string(what.size() - from) + " characters more)";
+        out += (lines ? "\n" : "") + printable(what.substr(from, end == std::string::npos ? std::string::npos : end - from));
+        if (end == std::string::npos) return out;
+        from = end + 1;
+    }
 }
 
 }  // namespace sympl::app

@@ -367,15 +367,15 @@ scene load_scene(const std::string& path, bool quick) {
         // Not a file: a built-in scene by name (those the report leaves out run so).
         if (path.find('/') == std::string::npos)
             if (std::optional<scene> s = builtin_scene(path, quick)) return *s;
-        throw scene_error(path + ": cannot open the scene file (nor is it a built-in scene's name)");
+        throw scene_error(printable(path) + ": cannot open the scene file (nor is it a built-in scene's name)");
     }
     // A regular file of at most max_scene_bytes: /dev/zero, a directory or a
     // huge file is refused without being read into memory.
     const file_text read = read_file_text(path, max_scene_bytes);
-    if (!read.failure.empty()) throw scene_error(path + ": the scene file " + read.failure);
+    if (!read.failure.empty()) throw scene_error(printable(path) + ": the scene file " + read.failure);
     const std::string& text = read.text;
     if (text.find('\0') != std::string::npos)
-        throw scene_error(path + ":" + std::to_string(1 + std::count(text.begin(), text.begin() + std::ptrdiff_t(text.find('\0')), '\n')) +
+        throw scene_error(printable(path) + ":" + std::to_string(1 + std::count(text.begin(), text.begin() + std::ptrdiff_t(text.find('\0')), '\n')) +
                           ": a NUL byte; expected a text file (TOML)");
     scene s = parse_scene(text, path, quick);
     // A file the scene reads joins its identity (a file that cannot be read

@@ -26,29 +26,6 @@ inline std::string join(const std::vector<std::string>& v) {
     return out;
 }
 
-// A message about a scene as the program prints it: one line, as written.
-// Control characters a name may hold (a NUL that would end the message, a
-// newline that would split it, a terminal's escape) are written as \0, \n,
-// \x1b; a message past 2000 characters (a megabyte name quoted in it) keeps
-// its first 1200 and last 600 with the count cut between them.
-inline std::string printable(const std::string& what) {
-    static constexpr char hex[] = "0123456789abcdef";
-    std::string out;
-    out.reserve(std::min<std::size_t>(what.size(), 4096));
-    for (const char c : what) {
-        const auto u = static_cast<unsigned char>(c);
-        if (u >= 0x20 && u != 0x7f) out += c;
-        else if (c == '\n') out += "\\n";
-        else if (c == '\t') out += "\\t";
-        else if (c == '\0') out += "\\0";
-        else out += std::string("\\x") + hex[u >> 4] + hex[u & 15];
-    }
-    constexpr std::size_t longest = 2000, head = 1200, tail = 600;
-    if (out.size() <= longest) return out;
-    return out.substr(0, head) + " ... (" + std::to_string(out.size() - head - tail) + " characters cut) ... " +
-           out.substr(out.size() - tail);
-}
-
 // Reads typed values and reports where a value is wrong. Unknown names (keys,
 // the system, methods) are collected and reported together, one line each,
 // with the first error that stops the reading or at its end (throw_unknown).
@@ -61,7 +38,7 @@ struct reader {
     mutable std::vector<std::string> unknown{};
 
     std::string at(const toml::source_region& where) const {
-        return source + ":" + std::to_string(where.begin.line) + ":" + std::to_string(where.begin.column) + ": ";
+        return printable(source) + ":" + std::to_string(where.begin.line) + ":" + std::to_string(where.begin.column) + ": ";
     }
     [[noreturn]] void fail(const toml::source_region& where, const std::string& what) const {
         std::string all = unknown_lines();
