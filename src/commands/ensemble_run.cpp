@@ -39,6 +39,7 @@ struct ensemble_block {
 // trajectories (0: no checkpoints, one piece).
 struct block_checkpoints {
     std::string scene_hash;
+    std::string file;  // the scene's checkpoint file, which the ranks' files are named after
     fs::path mine;
     std::size_t piece = 0;
     ensemble_rows rows;
@@ -57,6 +58,12 @@ ensemble_block compute_block(const ensemble_setup& u, int threads, const exchang
     for (std::size_t i = 0; i < b.points.size(); ++i) {
         if (!b.points[i].invalid.empty()) continue;
         if (const auto saved = saves.rows.find(b.first + i); saved != saves.rows.end()) {
+            // A row of another state size would write a CSV line of other columns.
+            if (saved->second.final_state.size() != b.points[i].x0.size())
+                throw error("ensemble checkpoint of " + saves.file + ": the row of point " + std::to_string(b.first + i) +
+                            " holds a final state of " + std::to_string(saved->second.final_state.size()) +
+                            " numbers; expected " + std::to_string(b.points[i].x0.size()) +
+                            " (q then p); not resumed from (remove it to start over)");
             b.rows[i] = saved->second;
             b.has_row[i] = true;
         } else {
@@ -152,6 +159,7 @@ ensemble_outcome run_ensemble_scene(const scene& s, const fs::path& dir, const s
         saves.mine = ensemble_checkpoint_file(s.checkpoint.file, ranks.rank);
         saves.piece = std::max<std::size_t>(1, s.checkpoint.every_steps / std::max<std::size_t>(1, u.request.steps));
         if (saves.mine.has_parent_path()) fs::create_directories(saves.mine.parent_path());
+        saves.file = s.checkpoint.file;
         if (resume) saves.rows = read_ensemble_checkpoints(s.checkpoint.file, s.text_hash);
     } else if (resume) {
         throw scene_error(s.source + ": --resume, but the scene has no checkpoint = {every_steps = N, file = \"...\"}");

@@ -75,6 +75,12 @@ struct body_reader {
         if (!(l >> v) || v > largest) refuse(file, std::string("a bad count in '") + key + "'");
         return v;
     }
+    // Nothing may follow a line's values (`step 5 junk`: a hand edit).
+    void finished(std::istringstream& l, const char* key) {
+        std::string word;
+        if (l >> word)
+            refuse(file, "holds '" + printable(word) + "' after the values of '" + key + "'; expected the line's end");
+    }
     // Nothing may follow the last line (the checksum covers whatever does).
     void end(const char* last) {
         const std::string rest(std::istreambuf_iterator<char>(in), {});
@@ -87,6 +93,7 @@ struct body_reader {
         const auto n = count(l, key, 1u << 24);
         std::vector<double> v(n);
         for (auto& x : v) x = number(l, key);
+        finished(l, key);
         return v;
     }
 };
@@ -160,7 +167,11 @@ checkpoint_record read_checkpoint(const fs::path& file, const std::string& scene
     if (text.substr(mark) != "checksum " + fnv1a_hex(body) + "\n") refuse(file, "is corrupted (checksum mismatch)");
     body_reader b{std::istringstream(body), file};
     checkpoint_record r;
-    b.line("scene") >> r.scene_hash;
+    {
+        auto l = b.line("scene");
+        l >> r.scene_hash;
+        b.finished(l, "scene");
+    }
     if (r.scene_hash != scene_hash) refuse(file, "belongs to another scene (or the scene file changed)");
     {
         auto l = b.line("method");
@@ -168,20 +179,25 @@ checkpoint_record read_checkpoint(const fs::path& file, const std::string& scene
         l.get();
         r.method.resize(n);
         l.read(r.method.data(), std::streamsize(n));
+        if (l.gcount() != std::streamsize(n)) refuse(file, "ends inside the method's name");
+        b.finished(l, "method");
         if (r.method != method) refuse(file, "is of method '" + r.method + "', not '" + method + "'");
     }
     {
         auto l = b.line("dt");
         r.dt = b.number(l, "dt");
+        b.finished(l, "dt");
         if (r.dt != dt) refuse(file, "was written at another dt");
     }
     {
         auto l = b.line("step");
         r.step = b.count(l, "step", UINT64_MAX / 2);
+        b.finished(l, "step");
     }
     {
         auto l = b.line("time");
         r.time = b.number(l, "time");
+        b.finished(l, "time");
     }
     r.state = b.numbers("state");
     r.memory.force = b.numbers("force");
@@ -193,19 +209,23 @@ checkpoint_record read_checkpoint(const fs::path& file, const std::string& scene
         auto l = b.line("fresh");
         r.memory.force_fresh = b.count(l, "fresh", 1) == 1;
         r.memory.velocity_fresh = b.count(l, "fresh", 1) == 1;
+        b.finished(l, "fresh");
     }
     {
         auto l = b.line("evaluations");
         r.memory.force_evaluations = b.count(l, "evaluations", UINT64_MAX);
         r.memory.velocity_evaluations = b.count(l, "evaluations", UINT64_MAX);
+        b.finished(l, "evaluations");
     }
     {
         auto l = b.line("max_energy_error");
         r.max_energy_error = b.number(l, "max_energy_error");
+        b.finished(l, "max_energy_error");
     }
     {
         auto l = b.line("trajectory_bytes");
         r.trajectory_bytes = b.count(l, "trajectory_bytes", UINT64_MAX / 2);
+        b.finished(l, "trajectory_bytes");
     }
     b.end("trajectory_bytes");
     return r;

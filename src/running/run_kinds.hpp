@@ -78,14 +78,20 @@ struct run_kind<method_kind::logh> {
     }
 
     // What the run carries beyond the stepper's memory: the extended state X
-    // (the time and its momentum with q and p).
+    // (the time and its momentum with q and p). Read back, its time and (q, p)
+    // must be the record's, which were observed from it: a time set far back
+    // would otherwise run until the step limit.
     template <class Extended>
     struct extended_state {
         Extended& X;
+        const checkpoint_record* from = nullptr;
         template <class Self, class List>
         static void carried_fields(Self& self, List& l) {
             l.values(self.X.q);
             l.values(self.X.p);
+            l.check(!self.from || (physical_time(self.X) == self.from->time &&
+                                   to_vector(physical_state(self.X)) == self.from->state),
+                    "holds an extended state whose time or (q, p) is not the record's");
         }
     };
 
@@ -97,7 +103,7 @@ struct run_kind<method_kind::logh> {
         Extended X = to_extended(c.sys, c.x, c.t0);
         steps_and_forces done;
         if (c.observed()) {
-            extended_state<Extended> more{X};
+            extended_state<Extended> more{X, c.rq.checkpoint.resume};
             done = checkpointed_run(c, stepper, more, [&](auto observe, const checkpoint_record* from, const auto& keeper) {
                 time_transformed_options options;
                 if (from) options.first_step = from->step;

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 #include <tuple>
+#include <utility>
 #include <optional>
 
 #include <sympl/core/error.hpp>
@@ -58,6 +59,31 @@ std::string refusal(const fs::path& f, const checkpoint_record& r, const std::st
     }
     return "accepted";
 }
+// A Kepler run of `method` to t = 3 at dt = 0.01 whose request saves a
+// checkpoint every 50 steps, and the first it saved.
+struct kepler_run {
+    scene s;
+    runnable_system p;
+    run_request rq;
+    checkpoint_record first;
+    explicit kepler_run(const std::string& method)
+        : s(parse_scene("system = \"kepler\"\nmethods = [\"" + method + "\"]\nt_end = 3\ndt = 0.01\n", "k.toml")),
+          p(system_of(s)), rq(plan_runs(s, p, sweep_use::first).runs.front().request()) {
+        bool saved = false;
+        rq.checkpoint.every_steps = 50;
+        rq.checkpoint.save = [&](checkpoint_record& r) {
+            if (!std::exchange(saved, true)) first = r;
+        };
+        p.run(s.methods.front(), rq, s.t0, s.t_end, p.x0);
+        REQUIRE(saved);
+        rq.checkpoint.save = [](checkpoint_record&) {};
+    }
+    // Resumed from r: refused, or run to the end.
+    run_result resumed_from(const checkpoint_record& r) {
+        rq.checkpoint.resume = &r;
+        return p.run(s.methods.front(), rq, s.t0, s.t_end, p.x0);
+    }
+};
 }  // namespace
 
 TEST_CASE("checkpoint: every number comes back to the last bit") {
@@ -115,6 +141,18 @@ TEST_CASE("checkpoint: truncated, corrupted, foreign or mismatched files are ref
     says(refused_for(good.substr(0, good.find('\n') + 1) + body + "checksum " + fnv1a_hex(body) + "\n", r.scene_hash,
                      r.dt),
          "holds 2 more bytes after 'trajectory_bytes'; expected its end");
+    // Words after a line's values, the checksum recomputed: refused by line.
+    const auto with_body = [&](const std::string& from, const std::string& to) {
+        std::string changed = good.substr(good.find('\n') + 1, good.rfind("checksum ") - good.find('\n') - 1);
+        changed.replace(changed.find(from), from.size(), to);
+        return good.substr(0, good.find('\n') + 1) + changed + "checksum " + fnv1a_hex(changed) + "\n";
+    };
+    says(refused_for(with_body("step 123456789\n", "step 123456789 junk\n"), r.scene_hash, r.dt),
+         "holds 'junk' after the values of 'step'; expected the line's end");
+    says(refused_for(with_body("\nforce 2 ", "\nforce 1 "), r.scene_hash, r.dt), "after the values of 'force'");
+    says(refused_for(with_body("evaluations 987654321012 42\n", "evaluations 987654321012 42 \x1b[31m\n"),
+                     r.scene_hash, r.dt),
+         "holds '\\x1b[31m' after the values of 'evaluations'");
     write(dir / "bad", good);
     checkpoint_record other = r;
     other.method = "rk4";
@@ -147,26 +185,30 @@ TEST_CASE("checkpoint: a stepper's memory of the wrong size is refused, not read
         const char* method = k.method;  // not a structured binding: clang 14 cannot capture one (CAPTURE)
         const char *cut = k.cut, *expected = k.expected;
         CAPTURE(method);
-        const scene s = parse_scene(std::string("system = \"kepler\"\nmethods = [\"") + method +
-                                        "\"]\nt_end = 3\ndt = 0.01\n",
-                                    "k.toml");
-        const runnable_system p = system_of(s);
-        run_request rq = plan_runs(s, p, sweep_use::first).runs.front().request();
-        std::optional<checkpoint_record> first;
-        rq.checkpoint.every_steps = 50;
-        rq.checkpoint.save = [&](checkpoint_record& r) {
-            if (!first) first = r;
-        };
-        p.run(s.methods.front(), rq, s.t0, s.t_end, p.x0);
-        REQUIRE(first);
-        checkpoint_record r = *first;
+        kepler_run run(method);
+        checkpoint_record r = run.first;
         std::vector<double>& v = std::string(cut) == "force" ? r.memory.force : r.memory.q_error;
         v.pop_back();
-        rq.checkpoint.save = nullptr;
-        rq.checkpoint.resume = &r;
-        CHECK_THROWS_WITH_AS(p.run(s.methods.front(), rq, s.t0, s.t_end, p.x0), doctest::Contains(expected),
+        CHECK_THROWS_WITH_AS(run.resumed_from(r), doctest::Contains(expected), sympl::error);
+    }
+}
+
+TEST_CASE("checkpoint: LogH's carried time and state are held to the record's") {
+    // The extended state LogH carries holds the time the run goes on from; a
+    // record with it set back (the checksum recomputed) ran to the step limit.
+    kepler_run run("logh(leapfrog_kdk)");
+    const checkpoint_record& first = run.first;
+    REQUIRE(first.carried.size() == 6);  // (q, t) then (p, p_t), Kepler in the plane
+    CHECK(first.carried[2] == first.time);
+    for (const int changed : {2, 0, 4}) {  // the time, a coordinate, a momentum
+        CAPTURE(changed);
+        checkpoint_record r = first;
+        r.carried[std::size_t(changed)] = changed == 2 ? -1e300 : r.carried[std::size_t(changed)] * (1 + 1e-15);
+        CHECK_THROWS_WITH_AS(run.resumed_from(r),
+                             doctest::Contains("holds an extended state whose time or (q, p) is not the record's"),
                              sympl::error);
     }
+    CHECK(run.resumed_from(first).stable);  // as written: resumes
 }
 
 TEST_CASE("checkpoint: a record's fields are held to the run it resumes, each refusal naming the field") {

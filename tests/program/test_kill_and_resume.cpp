@@ -228,6 +228,15 @@ TEST_CASE("kill and resume: an ensemble resumed at another rank count from one r
     write_ensemble_checkpoint(ensemble_checkpoint_file(s.checkpoint.file, 0), fnv1a_hex("another"), saved);
     CHECK_THROWS_WITH_AS(read_ensemble_checkpoints(s.checkpoint.file, s.text_hash),
                          doctest::Contains("belongs to another scene"), sympl::error);
+    // A row whose final state is not the scene's size (its checksum right):
+    // refused, where its CSV line would have had other columns.
+    ensemble_rows short_row = saved;
+    short_row.begin()->second.final_state.pop_back();
+    write_ensemble_checkpoint(ensemble_checkpoint_file(s.checkpoint.file, 0), s.text_hash, short_row);
+    CHECK_THROWS_WITH_AS(ensemble_command(s, (dir / "short").string(), 1, default_max_steps, exchange{}, ignored, true),
+                         doctest::Contains("the row of point 11 holds a final state of 3 numbers; expected 4 (q then p)"),
+                         sympl::error);
+    CHECK(!fs::exists(dir / "short" / "ensemble.csv"));
     fs::remove_all(dir);
 }
 
