@@ -246,7 +246,7 @@ private:
 // A map's checkpoints (row_checkpoint.hpp): a row per particle, its index,
 // kept, MEGNO, final a and e, removal time and reason; the starts are the
 // scene's.
-constexpr const char* checkpoint_head = "sympl-test-particles-checkpoint 1\n";
+constexpr const char* checkpoint_head = test_particles_checkpoint_head;
 const std::string checkpoint_kind = "test-particles";
 using saved_rows = std::map<std::size_t, test_particle_row>;
 

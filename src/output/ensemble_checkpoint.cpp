@@ -12,7 +12,7 @@ namespace sympl::app {
 namespace fs = std::filesystem;
 
 namespace {
-constexpr const char* head = "sympl-ensemble-checkpoint 1\n";
+constexpr const char* head = ensemble_checkpoint_head;
 const std::string kind = "ensemble";
 
 // A row: index, stable, blow-up step and time, energy error, MEGNO, the

@@ -16,6 +16,10 @@
 
 namespace sympl::app {
 
+// The head line of each kind's files, its format's version in it.
+inline constexpr const char* ensemble_checkpoint_head = "sympl-ensemble-checkpoint 1\n";
+inline constexpr const char* test_particles_checkpoint_head = "sympl-test-particles-checkpoint 1\n";
+
 // FILE.<kind>-rank-R: rank R's file ("ensemble", "test-particles").
 std::filesystem::path row_checkpoint_file(const std::string& file, const std::string& kind, int rank);
 

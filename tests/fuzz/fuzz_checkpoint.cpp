@@ -8,7 +8,8 @@
 // any other exception, crash, hang or sanitizer report is a finding.
 //
 // SYMPL_FUZZ_SEEDS=DIR: writes a seed per scene into DIR (a real checkpoint
-// of each, taken mid-run) and exits; tests/fuzz/run.sh starts from them.
+// of each, taken mid-run, checked to resume and finish) and exits;
+// tests/fuzz/run.sh starts from them.
 // SYMPL_FUZZ_VERBOSE: says on stderr whether each input was refused (and
 // why) or resumed to the end.
 #include <stdlib.h>
@@ -89,9 +90,10 @@ const fuzz_scene scenes[] = {
 constexpr std::size_t scene_count = std::size(scenes);
 constexpr std::size_t particle_piece = 2;  // several pieces, so several rows in a rank file
 
-const char* const run_head = "sympl-checkpoint 4\n";
-const char* const ensemble_head = "sympl-ensemble-checkpoint 1\n";
-const char* const test_particles_head = "sympl-test-particles-checkpoint 1\n";
+// The format lines the program's readers expect (checkpoint.hpp, row_checkpoint.hpp).
+const std::string run_head = "sympl-checkpoint " + std::to_string(checkpoint_format) + "\n";
+const char* const ensemble_head = ensemble_checkpoint_head;
+const char* const test_particles_head = test_particles_checkpoint_head;
 
 fs::path scratch;  // this process's own directory
 bool verbose = false;  // SYMPL_FUZZ_VERBOSE: say what became of each input (run on one file to see)
@@ -109,8 +111,8 @@ std::string read_whole(const fs::path& file) {
 }
 
 // The body of a checkpoint file: between its format line and its checksum.
-std::string body_of(const std::string& text, const char* head) {
-    const std::size_t from = std::string(head).size(), to = text.rfind("checksum ");
+std::string body_of(const std::string& text, const std::string& head) {
+    const std::size_t from = head.size(), to = text.rfind("checksum ");
     return to == std::string::npos || to < from ? std::string() : text.substr(from, to - from);
 }
 
@@ -163,36 +165,10 @@ void write_file(const fs::path& file, const std::string& text) {
     out << text;
 }
 
-}  // namespace
-
-extern "C" int LLVMFuzzerInitialize(int*, char***) {
-    char pattern[] = "/tmp/sympl-fuzz-checkpoint-XXXXXX";
-    if (!::mkdtemp(pattern)) {
-        std::perror("fuzz_checkpoint: mkdtemp");
-        std::exit(2);
-    }
-    scratch = pattern;
-    verbose = std::getenv("SYMPL_FUZZ_VERBOSE") != nullptr;
-    if (const char* dir = std::getenv("SYMPL_FUZZ_SEEDS")) {
-        fs::create_directories(dir);
-        for (std::size_t i = 0; i < scene_count; ++i) {
-            const std::string body = seed_of(i);
-            if (body.empty()) {
-                std::fprintf(stderr, "fuzz_checkpoint: scene %zu saved no checkpoint\n", i);
-                std::exit(2);
-            }
-            write_file(fs::path(dir) / ("seed-" + std::to_string(i)), std::string(1, char(i)) + body);
-        }
-        fs::remove_all(scratch);
-        std::exit(0);
-    }
-    return 0;
-}
-
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-    if (size == 0) return 0;
-    const std::size_t i = data[0] % scene_count;
-    const std::string body(reinterpret_cast<const char*>(data) + 1, size - 1);
+// Scene i resumed from a checkpoint of `body` (the format line and a
+// matching checksum added): empty when it resumed and finished, else the
+// refusal.
+std::string resume_from(std::size_t i, const std::string& body) {
     clear_scratch();
     try {
         const scene s = scene_of(i);
@@ -216,9 +192,54 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                 break;
         }
     } catch (const sympl::error& e) {
-        if (verbose) std::fprintf(stderr, "refused: %s\n", e.what());
-        return 0;
+        return e.what();
     }
-    if (verbose) std::fprintf(stderr, "resumed and finished: scene %zu\n", i);
+    return {};
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+    char pattern[] = "/tmp/sympl-fuzz-checkpoint-XXXXXX";
+    if (!::mkdtemp(pattern)) {
+        std::perror("fuzz_checkpoint: mkdtemp");
+        std::exit(2);
+    }
+    scratch = pattern;
+    // Removed when the fuzzer ends normally (a crash leaves it, with what the input wrote).
+    std::atexit([] {
+        std::error_code ec;
+        fs::remove_all(scratch, ec);
+    });
+    verbose = std::getenv("SYMPL_FUZZ_VERBOSE") != nullptr;
+    if (const char* dir = std::getenv("SYMPL_FUZZ_SEEDS")) {
+        fs::create_directories(dir);
+        for (std::size_t i = 0; i < scene_count; ++i) {
+            const std::string body = seed_of(i);
+            if (body.empty()) {
+                std::fprintf(stderr, "fuzz_checkpoint: scene %zu saved no checkpoint\n", i);
+                std::exit(2);
+            }
+            // A seed the program refuses would only teach the fuzzer refusals.
+            if (const std::string refusal = resume_from(i, body); !refusal.empty()) {
+                std::fprintf(stderr, "fuzz_checkpoint: the seed of scene %zu is refused: %s\n", i, refusal.c_str());
+                std::exit(2);
+            }
+            write_file(fs::path(dir) / ("seed-" + std::to_string(i)), std::string(1, char(i)) + body);
+        }
+        fs::remove_all(scratch);
+        std::exit(0);
+    }
+    return 0;
+}
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+    if (size == 0) return 0;
+    const std::size_t i = data[0] % scene_count;
+    const std::string refusal = resume_from(i, std::string(reinterpret_cast<const char*>(data) + 1, size - 1));
+    if (verbose) {
+        if (refusal.empty()) std::fprintf(stderr, "resumed and finished: scene %zu\n", i);
+        else std::fprintf(stderr, "refused: %s\n", refusal.c_str());
+    }
     return 0;
 }
