@@ -10,8 +10,9 @@
 // periods (Wisdom & Hernandez 2015, MNRAS 453, 3015, do the same); the root
 // of Kepler's equation is found by Danby's quartic iteration inside a
 // bracket, replaced by bisection whenever it leaves the bracket or stalls,
-// so the solve always ends (kepler_equation.hpp). The accuracy analysis is in
-// docs/planetary.md ("The Kepler solve").
+// so the solve always ends (kepler_equation.hpp). A hyperbolic drift of a
+// large anomaly change goes in pieces (drift_in_pieces). The accuracy
+// analysis is in docs/planetary.md ("The Kepler solve").
 //
 // Bad input (a body at the central mass, GM <= 0, non-finite numbers) is an
 // invalid_argument naming the value and, in kepler_drift_all, the body.
@@ -65,17 +66,91 @@ void drift_by_f_and_g(S* r, S* v, S r0, S eta0, S gm, S g1, S g2, S rr) {
     apply_f_and_g(f_and_g_at(r0, eta0, gm, g1, g2, rr), r[0], r[1], r[2], v[0], v[1], v[2]);
 }
 
+// A hyperbolic drift whose anomaly changes by more than 6 (-beta s^2 > 36)
+// and whose update r = f r0 + g v0, with g = r0 G1 + eta0 G2, adds terms
+// more than 256 times the result's size (they grow as cosh of the anomaly
+// change; docs/planetary.md, "The Kepler solve") is taken in pieces
+// (drift_in_pieces); one whose sums cancel less is better taken whole.
 template <class S>
-void kepler_drift_body(S* r, S* v, S gm, S h, std::ptrdiff_t body) {
-    check_kepler_input(r, v, gm, h, body);
-    if (h == 0) return;
+inline constexpr S hyperbolic_piece_limit = 36;
+template <class S>
+inline constexpr S hyperbolic_cancellation_limit = 256;
+
+// One solve of Kepler's equation and its f and g update; returns 0. Where
+// may_split and the drift is a long hyperbolic one, moves nothing and returns
+// the root s for drift_in_pieces.
+template <class S>
+S drift_by_one_solve(S* r, S* v, S gm, S h, bool may_split) {
     const S r0 = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
     const S eta0 = r[0] * v[0] + r[1] * v[1] + r[2] * v[2];
     const S v2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
     const kepler_orbit<S> o = make_orbit(r0, eta0, v2, gm, h);
-    if (o.h == 0) return;  // whole periods: back at the start
+    if (o.h == 0) return 0;  // whole periods: back at the start
     const kepler_residual<S> k = solve_universal(o, starting_value(o));
-    drift_by_f_and_g(r, v, r0, eta0, gm, k.g1, k.g2, k.r);
+    const f_and_g<S> fg = f_and_g_at(r0, eta0, gm, k.g1, k.g2, k.r);
+    if (may_split && o.beta < 0 && -o.beta * k.s * k.s > hyperbolic_piece_limit<S> &&
+        (2 + std::fabs(fg.fm1)) * r0 + (r0 * std::fabs(k.g1) + std::fabs(eta0 * k.g2)) * std::sqrt(v2) >
+            hyperbolic_cancellation_limit<S> * k.r)
+        return k.s;
+    apply_f_and_g(fg, r[0], r[1], r[2], v[0], v[1], v[2]);
+    return 0;
+}
+
+// One piece of length d in the universal variable (its G's at hand): the
+// body moved by f and g, the piece's time t(d) (Danby 1988, eq. 6.9.16)
+// returned.
+template <class S>
+S drift_piece(S* r, S* v, S gm, const stumpff_values<S>& c, S d) {
+    const S g1 = d * c.c1, g2 = d * d * c.c2, g3 = d * d * d * c.c3;
+    const S r0 = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+    const S eta0 = r[0] * v[0] + r[1] * v[1] + r[2] * v[2];
+    drift_by_f_and_g(r, v, r0, eta0, gm, g1, g2, (r0 * c.c0 + eta0 * g1) + gm * g2);
+    return (r0 * g1 + eta0 * g2) + gm * g3;
+}
+
+template <class S>
+stumpff_values<S> stumpff_at(S x) {
+    stumpff_values<S> c;
+    stumpff_lanes<S, 1>(&x, &c.c0, &c.c1, &c.c2, &c.c3);
+    return c;
+}
+
+// The drift over h whose root is s, in pieces of anomaly change 2 (length
+// D = 2 / sqrt(-beta) in s), so that every f and g sum is of terms near the
+// result's size. A pericentre passed on the way lies mid-piece: a piece
+// boundary there would hold the body where GM / r, and the rounding of its
+// energy, is largest (e near 1: 2 / (e - 1) times the energy's scale far
+// out). Each piece's time is taken off h and the last piece is solved for
+// the time left, so the pieces add up to h. With the G's finite (cosh
+// overflows past 710), sqrt(-beta) |s| < 710: at most 356 pieces.
+template <class S>
+void drift_in_pieces(S* r, S* v, S gm, S h, S s) {
+    const S r0 = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+    const S eta0 = r[0] * v[0] + r[1] * v[1] + r[2] * v[2];
+    const S beta = 2 * gm / r0 - (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    const S root = std::sqrt(-beta), sign = s > 0 ? S(1) : S(-1), D = 2 / root;
+    // The anomaly F0 at the start (sinh F0 = es / e, as in starting_value) and
+    // the s of the pericentre, F = 0: -F0 / sqrt(-beta), ahead when of s's sign.
+    const S ec = 1 - beta * r0 / gm, es = eta0 * root / gm;
+    const S e = std::sqrt(std::max(S(0), (ec - es) * (ec + es)));
+    const S ahead = e > 0 ? -sign * std::asinh(es / e) / root : S(-1);
+    S first = 0;  // |s| of the first, shorter piece: its end is D / 2 past the pericentre
+    if (ahead > 0 && ahead < std::fabs(s)) first = std::fmod(ahead + D / 2, D);
+    S left = h, done = 0;
+    if (first > 0 && first < std::fabs(s)) {
+        left -= drift_piece(r, v, gm, stumpff_at(beta * first * first), sign * first);
+        done = first;
+    }
+    const stumpff_values<S> c = stumpff_at(beta * D * D);
+    for (; done + D < std::fabs(s); done += D) left -= drift_piece(r, v, gm, c, sign * D);
+    if (left != 0) drift_by_one_solve(r, v, gm, left, false);
+}
+
+template <class S>
+void kepler_drift_body(S* r, S* v, S gm, S h, std::ptrdiff_t body) {
+    check_kepler_input(r, v, gm, h, body);
+    if (h == 0) return;
+    if (const S s = drift_by_one_solve(r, v, gm, h, true); s != 0) drift_in_pieces(r, v, gm, h, s);
     for (int i = 0; i < 3; ++i)
         if (!std::isfinite(r[i]) || !std::isfinite(v[i]))
             throw invalid_argument("kepler_drift: h = " + number_text(h) + body_text<S>(body) +

@@ -262,9 +262,9 @@ void general_iterations(const S (&r0)[W], const S (&eta0)[W], const S (&gm)[W], 
 }
 
 // The bodies idx[0..count) (count <= W; the other lanes repeat body idx[0],
-// their results dropped) by general_iterations; a lane not converged is
-// redone by the scalar drift with its bracket. For the lanes the short-drift
-// path did not take. Returns the bodies redone.
+// their results dropped) by general_iterations; a lane not converged, or a
+// long hyperbolic drift (drift_in_pieces), is redone by the scalar drift.
+// For the lanes the short-drift path did not take. Returns the bodies redone.
 template <class S, int W, class GM>
 std::size_t general_lanes(const kepler_bodies<S>& b, GM gm_of, S h, const std::size_t (&idx)[W], int count) {
     std::size_t fallbacks = 0;
@@ -297,7 +297,9 @@ std::size_t general_lanes(const kepler_bodies<S>& b, GM gm_of, S h, const std::s
         S r[3] = {rx[l], ry[l], rz[l]}, v[3] = {ux[l], uy[l], uz[l]};
         const std::size_t i = idx[l];
         const bool finite = std::isfinite(g1[l]) && std::isfinite(g2[l]) && std::isfinite(rr[l]) && rr[l] > 0;
-        if (active[l] || !finite) {
+        // Maybe a drift the scalar path takes in pieces (it decides).
+        const bool in_pieces = o[l].beta < 0 && -o[l].beta * s[l] * s[l] > hyperbolic_piece_limit<S>;
+        if (active[l] || !finite || in_pieces) {
             ++fallbacks;
             kepler_drift_body(r, v, gm[l], h, std::ptrdiff_t(i));  // the bracketed scalar solve
         } else if (o[l].h != 0) {
