@@ -123,7 +123,7 @@ void run_one(const command_line& c, const exchange& ranks) {
         return run_scene(s, c.json, std::cout, c.max_steps, c.resume);
     }
     if (c.json)
-        throw sympl::error(s.source + " has [test_particles]: its run writes files in --out; expected no --json");
+        throw sympl::error(printable(s.source) + " has [test_particles]: its run writes files in --out; expected no --json");
     test_particles_command(s, c.run_out, c.threads, c.max_steps, ranks, c.resume, std::cout);
 }
 

@@ -60,10 +60,11 @@ ensemble_block compute_block(const ensemble_setup& u, int threads, const exchang
         if (const auto saved = saves.rows.find(b.first + i); saved != saves.rows.end()) {
             // A row of another state size would write a CSV line of other columns.
             if (saved->second.final_state.size() != b.points[i].x0.size())
-                throw error("ensemble checkpoint of " + saves.file + ": the row of point " + std::to_string(b.first + i) +
-                            " holds a final state of " + std::to_string(saved->second.final_state.size()) +
-                            " numbers; expected " + std::to_string(b.points[i].x0.size()) +
-                            " (q then p); not resumed from (remove it to start over)");
+                throw error("ensemble checkpoint " + printable(saves.file) + ".ensemble-rank-*: the row of point " +
+                            std::to_string(b.first + i) + " holds a final state of " +
+                            std::to_string(saved->second.final_state.size()) + " numbers; expected " +
+                            std::to_string(b.points[i].x0.size()) +
+                            " (q then p); not resumed from (remove them to start over)");
             b.rows[i] = saved->second;
             b.has_row[i] = true;
         } else {
@@ -162,7 +163,7 @@ ensemble_outcome run_ensemble_scene(const scene& s, const fs::path& dir, const s
         saves.file = s.checkpoint.file;
         if (resume) saves.rows = read_ensemble_checkpoints(s.checkpoint.file, s.text_hash);
     } else if (resume) {
-        throw scene_error(s.source + ": --resume, but the scene has no checkpoint = {every_steps = N, file = \"...\"}");
+        throw scene_error(printable(s.source) + ": --resume, but the scene has no checkpoint = {every_steps = N, file = \"...\"}");
     }
     const ensemble_block block = compute_block(u, threads, ranks, saves);
     ensemble_outcome mine;

@@ -113,7 +113,7 @@ public:
             std::error_code ec;
             const auto size = fs::file_size(trajectory_file_, ec);
             if (ec || size < from_->trajectory_bytes)
-                throw error("checkpoint " + file_.string() + ": its trajectory " + trajectory_file_.string() +
+                throw error("checkpoint " + printable(file_.string()) + ": its trajectory " + printable(trajectory_file_.string()) +
                             " is shorter than the " + std::to_string(from_->trajectory_bytes) +
                             " bytes it recorded; not resumed from (remove both to start over)");
             // Its rows end where the record says: at a line's end, the header's at least.
@@ -124,8 +124,8 @@ public:
                 rows.get(last);
             }
             if (from_->trajectory_bytes < trajectory_header.size() || last != '\n')
-                throw error("checkpoint " + file_.string() + ": it records " + std::to_string(from_->trajectory_bytes) +
-                            " bytes of " + trajectory_file_.string() + ", which is not the end of a row; expected a "
+                throw error("checkpoint " + printable(file_.string()) + ": it records " + std::to_string(from_->trajectory_bytes) +
+                            " bytes of " + printable(trajectory_file_.string()) + ", which is not the end of a row; expected a "
                             "row's end; not resumed from (remove both to start over)");
             fs::resize_file(trajectory_file_, from_->trajectory_bytes);  // rows written after the checkpoint go
             trajectory_.open(trajectory_file_, std::ios::binary | std::ios::app);
@@ -134,13 +134,14 @@ public:
             trajectory_ << trajectory_header;
         }
         trajectory_ << std::setprecision(17);
-        if (!trajectory_) throw error("cannot write " + trajectory_file_.string() + ": " + std::strerror(errno));
+        if (!trajectory_) throw error("cannot write " + printable(trajectory_file_.string()) + ": " + std::strerror(errno));
     }
 
     // Points the run at the checkpoint's trajectory and save/resume hooks.
     void attach(run_request& rq) {
         rq.checkpoint.every_steps = s_->checkpoint.every_steps;
         rq.checkpoint.resume = from_ ? &*from_ : nullptr;
+        rq.checkpoint.resume_file = file_.string();
         if (with_trajectory_) rq.trajectory = &trajectory_;
         rq.checkpoint.save = [this](checkpoint_record& r) {
             r.scene_hash = s_->text_hash;
@@ -148,7 +149,7 @@ public:
             r.dt = dt_;
             if (with_trajectory_) {
                 trajectory_.flush();
-                if (!trajectory_) throw error("could not write " + trajectory_file_.string() + ": " + std::strerror(errno));
+                if (!trajectory_) throw error("could not write " + printable(trajectory_file_.string()) + ": " + std::strerror(errno));
                 r.trajectory_bytes = std::uint64_t(trajectory_.tellp());
             }
             write_checkpoint(file_, r);
@@ -312,7 +313,7 @@ reference_state reference_for_run(const scene& s, const runnable_system& p, cons
                              format_number(cost.seconds, 2) + " s";
     const double limit = max_reference_seconds * max_steps / default_max_steps;
     if (cost.seconds > limit)
-        throw scene_error(s.source + ": " + what + ", measured on its first steps; the limit is " +
+        throw scene_error(printable(s.source) + ": " + what + ", measured on its first steps; the limit is " +
                           format_number(limit, 3) + " s (leave output.final_error out, or raise it with --max-steps)");
     if (cost.seconds > announced_reference_seconds)
         std::cerr << "sympl: " << what << ", before the methods run (leave output.final_error out to skip it)"
@@ -326,14 +327,14 @@ void run_scene(const scene& s, bool json, std::ostream& out, double max_steps, b
     if (!s.output.final_error.value_or(bool(p.exact))) plan.reference_dt = plan.reference_steps = 0;  // none runs
     check_run_size(plan, max_steps);
     if (s.output.energy_every && !p.hamiltonian)
-        throw scene_error(s.source + ": output.energy_every: " + s.system + " has no energy (it is not Hamiltonian); "
+        throw scene_error(printable(s.source) + ": output.energy_every: " + s.system + " has no energy (it is not Hamiltonian); "
                           "expected no energy_every");
     if (!s.output.times.empty() && !p.form.separable_hamiltonian)
-        throw scene_error(s.source + ": output.times: " + s.system +
+        throw scene_error(printable(s.source) + ": output.times: " + s.system +
                           " is not a separable Hamiltonian T(p) + V(q), whose velocity and force the interpolant "
                           "between steps needs; use output.trajectory_every");
     if (resume && !s.checkpoint.every_steps)
-        throw scene_error(s.source + ": --resume, but the scene has no checkpoint = {every_steps = N, file = \"...\"}");
+        throw scene_error(printable(s.source) + ": --resume, but the scene has no checkpoint = {every_steps = N, file = \"...\"}");
     const reference_state ref = reference_for_run(s, p, plan, max_steps);
     // Files, when the scene asks for any, are staged and moved into place together.
     std::optional<output_set> outputs;

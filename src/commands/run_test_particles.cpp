@@ -44,7 +44,7 @@ const std::vector<std::string> element_columns{"a", "e", "inclination", "node", 
 // any leading part of inclination, node, pericentre, mean_anomaly (degrees).
 std::vector<orbital_elements> read_elements(const std::string& path) {
     const file_text read = read_file_text(path, max_elements_bytes);
-    if (!read.failure.empty()) throw scene_error(path + ": the orbital elements file " + read.failure);
+    if (!read.failure.empty()) throw scene_error(printable(path) + ": the orbital elements file " + read.failure);
     std::istringstream in(read.text);
     std::string line, header;
     std::size_t number = 0, columns = 0;
@@ -52,7 +52,7 @@ std::vector<orbital_elements> read_elements(const std::string& path) {
     while (std::getline(in, line)) {
         ++number;
         if (!line.empty() && line.back() == '\r') line.pop_back();
-        const std::string where = path + ":" + std::to_string(number) + ": ";
+        const std::string where = printable(path) + ":" + std::to_string(number) + ": ";
         if (number == 1) {
             for (std::size_t k = 0; k < element_columns.size(); ++k) {
                 header += (k ? "," : "") + element_columns[k];
@@ -80,7 +80,7 @@ std::vector<orbital_elements> read_elements(const std::string& path) {
         for (std::size_t k = 2; k < columns; ++k) *angles[k - 2] = x[k] * degree;
         orbits.push_back(o);
     }
-    if (orbits.empty()) throw scene_error(path + ": no orbits; expected a header and at least one line of elements");
+    if (orbits.empty()) throw scene_error(printable(path) + ": no orbits; expected a header and at least one line of elements");
     return orbits;
 }
 
@@ -120,14 +120,14 @@ void check_planets_bound(const scene& s, const planets& p) {
         const double mu = p.G * (p.mass[0] + p.mass[k]);
         const double speed = std::hypot(v[0], v[1], v[2]), distance = std::hypot(r[0], r[1], r[2]);
         if (!(std::isfinite(speed) && speed * speed < 2 * mu / distance))  // v^2 / 2 - mu / r >= 0, or overflow
-            throw scene_error(s.source + ": the planet " + p.body_names[k] + " starts at " +
+            throw scene_error(printable(s.source) + ": the planet " + p.body_names[k] + " starts at " +
                               format_number(distance, 6) + " AU from the star at " + format_number(speed, 6) +
                               " AU/day, at or past the escape speed " + format_number(std::sqrt(2 * mu / distance), 6) +
                               " AU/day" +
                               "; expected planets on bound orbits outside the star (" +
                               shortest(test_particle_star_radius) + " AU) for a test-particle map");
         const auto [a, e] = elements_of(r, v, mu);
-        const std::string planet = s.source + ": the planet " + p.body_names[k] + " starts on a heliocentric orbit with ";
+        const std::string planet = printable(s.source) + ": the planet " + p.body_names[k] + " starts on a heliocentric orbit with ";
         const std::string expected = "; expected planets on bound orbits outside the star (" +
                                      shortest(test_particle_star_radius) + " AU) for a test-particle map";
         // The pericentre h^2 / (G M (1 + e)), for any conic: 0 for a fall (h = 0), where a (1 - e) rounds.
@@ -338,7 +338,7 @@ std::vector<test_particle_row> run_test_particles(const scene& s, const std::vec
                                                   int threads, double max_steps, const exchange& ranks, bool resume,
                                                   std::size_t piece) {
     if (resume && !s.checkpoint.every_steps)
-        throw scene_error(s.source + ": --resume, but the scene has no checkpoint = {every_steps = N, file = \"...\"}");
+        throw scene_error(printable(s.source) + ": --resume, but the scene has no checkpoint = {every_steps = N, file = \"...\"}");
     if (piece == 0) throw invalid_argument("run_test_particles: pieces of 0 particles; expected at least 1");
     const runnable_system base = make_system(s.system, s.parameters, s.q0, s.p0, s.source);
     planets p{base.masses, base.G, phase_space<double>(base.x0.size() / 2), s.methods[0], s.t0,
@@ -355,7 +355,7 @@ std::vector<test_particle_row> run_test_particles(const scene& s, const std::vec
     const double span_steps = test_particle_span_of(s).steps;
     const double total = span_steps * double(orbits.size());
     if (!(span_steps <= max_steps) || !(total <= 1e4 * max_steps))
-        throw scene_error(s.source + ": " + shortest(double(orbits.size())) + " test particles over " +
+        throw scene_error(printable(s.source) + ": " + shortest(double(orbits.size())) + " test particles over " +
                           format_number(span_steps, 6) + " steps of dt = " + shortest(p.dt) + " take " +
                           format_number(total, 6) + " particle-steps; the limit is " + format_number(max_steps, 6) +
                           " steps and 1e4 times that in particle-steps (raise it with --max-steps)");

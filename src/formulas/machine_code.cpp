@@ -15,6 +15,7 @@
 #include <fstream>
 #include <vector>
 
+#include "output/format.hpp"
 #include "output/writers.hpp"
 
 extern char** environ;
@@ -49,7 +50,7 @@ public:
         fs::path base = fs::temp_directory_path(ec);
         if (ec) base = "/tmp";
         std::string pattern = (base / "sympl-formulas-XXXXXX").string();
-        if (!::mkdtemp(pattern.data())) throw std::runtime_error("cannot make a folder in " + base.string() + ": " +
+        if (!::mkdtemp(pattern.data())) throw std::runtime_error("cannot make a folder in " + printable(base.string()) + ": " +
                                                                   std::strerror(errno));
         path_ = pattern;
     }
@@ -91,20 +92,20 @@ compiled_or_reason compile_c(const std::string& source) {
                        log = folder.file("compiler.log");
         {
             const int fd = create_new_file(c_file);
-            if (fd < 0) return {nullptr, "cannot write " + c_file.string() + ": " + std::strerror(errno)};
+            if (fd < 0) return {nullptr, "cannot write " + printable(c_file.string()) + ": " + std::strerror(errno)};
             std::size_t written = 0;
             while (written < source.size()) {
                 const ssize_t n = ::write(fd, source.data() + written, source.size() - written);
                 if (n <= 0) {
                     ::close(fd);
-                    return {nullptr, "cannot write " + c_file.string() + ": " + std::strerror(errno)};
+                    return {nullptr, "cannot write " + printable(c_file.string()) + ": " + std::strerror(errno)};
                 }
                 written += std::size_t(n);
             }
             ::close(fd);
         }
         const int log_fd = create_new_file(log);
-        if (log_fd < 0) return {nullptr, "cannot write " + log.string() + ": " + std::strerror(errno)};
+        if (log_fd < 0) return {nullptr, "cannot write " + printable(log.string()) + ": " + std::strerror(errno)};
         // IEEE arithmetic as the interpreter's (no contraction into FMA, no
         // fast-math); errno is never read, so the math builtins are pure. A
         // gradient's zeroing stays a loop, not a call to memset (38 against

@@ -59,7 +59,7 @@ run_plan plan_runs(const scene& s, const runnable_system& p, sweep_use use) {
 void check_run_size(const run_plan& plan, double max_steps) {
     const scene& s = *plan.s;
     const auto refuse = [&](const std::string& what, double dt, double steps) {
-        throw scene_error(s.source + ": " + what + " at dt = " + shortest(dt) + " over t = " + shortest(s.t0) + " .. " +
+        throw scene_error(printable(s.source) + ": " + what + " at dt = " + shortest(dt) + " over t = " + shortest(s.t0) + " .. " +
                           shortest(s.t_end) + " takes " + format_number(steps, 3) + " steps; the limit is " +
                           format_number(max_steps, 3) + " (raise it with --max-steps)");
     };
@@ -68,7 +68,7 @@ void check_run_size(const run_plan& plan, double max_steps) {
         // `sympl run` writes its energy series as the run goes (run_scene.cpp): none held.
         const memory_estimate m = run_memory(*r.method, plan.degrees_of_freedom, r.steps, 0);
         if (!(m.bytes <= memory_budget_bytes))
-            throw scene_error(s.source + ": method '" + r.method->name + "' would hold " +
+            throw scene_error(printable(s.source) + ": method '" + r.method->name + "' would hold " +
                               format_number(m.bytes / double(1 << 30), 3) + " GiB (" + m.what + "); the limit is " +
                               format_number(memory_budget_bytes / double(1 << 30), 3) +
                               " GiB a run (docs/reliability.md, \"Memory\")");
@@ -102,10 +102,10 @@ runnable_system system_of(const scene& s) {
     // would make every energy error read 0 or NaN.
     if (p.energy)
         if (const double e0 = p.energy(p.x0); !std::isfinite(e0))
-            throw scene_error(s.source + ": the initial state of " + s.system + " has energy H = " + shortest(e0) +
+            throw scene_error(printable(s.source) + ": the initial state of " + s.system + " has energy H = " + shortest(e0) +
                               "; expected a state of finite energy");
     for (const method_spec& m : s.methods)
-        if (const std::string why = why_not(m, p.form); !why.empty()) throw scene_error(s.source + ": " + why);
+        if (const std::string why = why_not(m, p.form); !why.empty()) throw scene_error(printable(s.source) + ": " + why);
     return p;
 }
 

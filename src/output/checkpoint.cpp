@@ -48,7 +48,7 @@ void put(std::ostringstream& o, const char* key, const std::vector<double>& v) {
 }
 
 [[noreturn]] void refuse(const fs::path& file, const std::string& why) {
-    throw error("checkpoint " + file.string() + ": " + why + "; not resumed from (remove it to start over)");
+    throw error("checkpoint " + printable(file.string()) + ": " + why + "; not resumed from (remove it to start over)");
 }
 
 // A line "key values..." of the body, in order.
@@ -120,7 +120,7 @@ void write_checkpoint(const fs::path& file, const checkpoint_record& r) {
 void write_durably(const fs::path& file, const std::string& text) {
     const fs::path temporary = temporary_for(file, false);
     const int fd = create_new_file(temporary);
-    if (fd < 0) throw error("cannot write checkpoint " + temporary.string() + ": " + std::strerror(errno));
+    if (fd < 0) throw error("cannot write checkpoint " + printable(temporary.string()) + ": " + std::strerror(errno));
     std::size_t done = 0;
     while (done < text.size()) {
         const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
@@ -129,7 +129,7 @@ void write_durably(const fs::path& file, const std::string& text) {
             const int reason = errno;
             ::close(fd);
             ::unlink(temporary.c_str());
-            throw error("could not write checkpoint " + file.string() + ": " + std::strerror(reason ? reason : EIO) +
+            throw error("could not write checkpoint " + printable(file.string()) + ": " + std::strerror(reason ? reason : EIO) +
                         " (the previous checkpoint is kept)");
         }
         done += std::size_t(n);
@@ -137,13 +137,13 @@ void write_durably(const fs::path& file, const std::string& text) {
     if (::fsync(fd) != 0 || ::close(fd) != 0) {
         const int reason = errno;
         ::unlink(temporary.c_str());
-        throw error("could not write checkpoint " + file.string() + ": " + std::strerror(reason) +
+        throw error("could not write checkpoint " + printable(file.string()) + ": " + std::strerror(reason) +
                     " (the previous checkpoint is kept)");
     }
     if (::rename(temporary.c_str(), file.c_str()) != 0) {
         const int reason = errno;
         ::unlink(temporary.c_str());
-        throw error("could not move checkpoint into " + file.string() + ": " + std::strerror(reason));
+        throw error("could not move checkpoint into " + printable(file.string()) + ": " + std::strerror(reason));
     }
     // The rename itself reaches the disk with the directory.
     const fs::path dir = file.has_parent_path() ? file.parent_path() : fs::path(".");

@@ -49,15 +49,20 @@ inline std::string counter(std::size_t i, std::size_t n) {
 // A message as the program prints it: one line, as written.
 // Control characters a name may hold (a NUL that would end the message, a
 // newline that would split it, a terminal's escape) are written as \0, \n,
-// \x1b; a message past 2000 characters (a megabyte name quoted in it) keeps
+// \x1b, and UTF-8's C1 controls as \u0080..\u009f; a message past 2000 characters (a megabyte name quoted in it) keeps
 // its first 1200 and last 600 with the count cut between them.
 inline std::string printable(const std::string& what) {
     static constexpr char hex[] = "0123456789abcdef";
     std::string out;
     out.reserve(std::min<std::size_t>(what.size(), 4096));
-    for (const char c : what) {
+    for (std::size_t i = 0; i < what.size(); ++i) {
+        const char c = what[i];
         const auto u = static_cast<unsigned char>(c);
-        if (u >= 0x20 && u != 0x7f) out += c;
+        const auto next = i + 1 < what.size() ? static_cast<unsigned char>(what[i + 1]) : 0u;
+        if (u == 0xc2 && next >= 0x80 && next <= 0x9f) {  // U+0080..U+009F: C1 controls (U+009B starts an escape)
+            out += std::string("\\u00") + hex[next >> 4] + hex[next & 15];
+            ++i;
+        } else if (u >= 0x20 && u != 0x7f) out += c;
         else if (c == '\n') out += "\\n";
         else if (c == '\t') out += "\\t";
         else if (c == '\0') out += "\\0";

@@ -11,6 +11,7 @@
 
 #include <sympl/core/error.hpp>
 
+#include "output/format.hpp"
 #include "output/interrupt.hpp"
 #include "output/writers.hpp"
 
@@ -48,11 +49,11 @@ output_set::output_set(fs::path directory) : directory_(std::move(directory)) {
     const fs::path lock = directory_ / ".sympl.lock";
     // Never through a symlink: a planted .sympl.lock -> file would be truncated.
     lock_fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644);
-    if (lock_fd_ < 0) throw error("cannot open " + lock.string() + ": " + std::strerror(errno));
+    if (lock_fd_ < 0) throw error("cannot open " + printable(lock.string()) + ": " + std::strerror(errno));
     if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
         const std::string holder = read_all(lock_fd_);
         ::close(lock_fd_);
-        throw error(directory_.string() + " is being written by another sympl (process " +
+        throw error(printable(directory_.string()) + " is being written by another sympl (process " +
                     (holder.empty() ? std::string("unknown") : holder) +
                     "); expected one run per output directory: wait for it or choose another directory");
     }
@@ -90,7 +91,7 @@ void output_set::commit() {
     for (const fs::path& f : files) {
         std::error_code ec;
         fs::rename(f, directory_ / f.filename(), ec);
-        if (ec) throw error("could not move " + f.string() + " into " + directory_.string() + ": " + ec.message());
+        if (ec) throw error("could not move " + printable(f.string()) + " into " + printable(directory_.string()) + ": " + ec.message());
     }
     std::error_code ec;
     fs::remove_all(staging_, ec);

@@ -9,6 +9,7 @@
 #include <sympl/core/error.hpp>
 
 #include "output/checkpoint.hpp"
+#include "output/format.hpp"
 #include "output/writers.hpp"
 #include "reading/file_text.hpp"
 
@@ -77,7 +78,7 @@ void remove_row_checkpoints(const std::string& file, const std::string& kind) {
 }
 
 void refuse_row_checkpoint(const std::string& kind, const fs::path& file, const std::string& why) {
-    throw error(kind + " checkpoint " + file.string() + ": " + why + "; not resumed from (remove it to start over)");
+    throw error(kind + " checkpoint " + printable(file.string()) + ": " + why + "; not resumed from (remove it to start over)");
 }
 
 std::string hex_text(double v) {

@@ -15,6 +15,8 @@
 
 #include <sympl/core/error.hpp>
 
+#include "output/format.hpp"
+
 extern char** environ;
 
 namespace sympl::app {
@@ -55,10 +57,10 @@ int create_new_file(const fs::path& path) {
 // then opened by name for the stream.
 atomic_file::atomic_file(fs::path path) : path_(std::move(path)), temporary_(temporary_for(path_, true)) {
     const int fd = create_new_file(temporary_);
-    if (fd < 0) throw error("cannot write " + temporary_.string() + ": " + std::strerror(errno));
+    if (fd < 0) throw error("cannot write " + printable(temporary_.string()) + ": " + std::strerror(errno));
     ::close(fd);
     out_.open(temporary_);
-    if (!out_) throw error("cannot write " + temporary_.string() + ": " + std::strerror(errno));
+    if (!out_) throw error("cannot write " + printable(temporary_.string()) + ": " + std::strerror(errno));
 }
 
 atomic_file::~atomic_file() {
@@ -75,11 +77,11 @@ void atomic_file::commit() {
     const int reason = errno;
     out_.close();
     if (!written || out_.fail())
-        throw error("could not write " + path_.string() + ": " + std::strerror(reason ? reason : EIO) +
+        throw error("could not write " + printable(path_.string()) + ": " + std::strerror(reason ? reason : EIO) +
                     " (the previous file, if any, is kept)");
     std::error_code ec;
     fs::rename(temporary_, path_, ec);
-    if (ec) throw error("could not move " + temporary_.string() + " to " + path_.string() + ": " + ec.message());
+    if (ec) throw error("could not move " + printable(temporary_.string()) + " to " + printable(path_.string()) + ": " + ec.message());
     committed_ = true;
 }
 

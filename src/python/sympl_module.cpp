@@ -258,6 +258,7 @@ public:
                 throw invalid_argument(e.what());
             }
             rq.checkpoint.resume = &*from;
+            rq.checkpoint.resume_file = file;
         }
         rq.checkpoint.every_steps = every;
         rq.checkpoint.save = [file, hash, method, dt = rq.dt](checkpoint_record& record) {

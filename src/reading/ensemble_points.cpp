@@ -28,7 +28,7 @@ std::string key_of(const system_entry& entry, const parameter_values& v) {
 
 std::vector<std::vector<double>> read_states(const std::string& path, const std::vector<std::string>& columns) {
     const file_text read = read_file_text(path, max_states_bytes);
-    if (!read.failure.empty()) throw scene_error(path + ": the states file " + read.failure);
+    if (!read.failure.empty()) throw scene_error(printable(path) + ": the states file " + read.failure);
     std::istringstream in(read.text);
     std::string line;
     std::size_t number = 0;
@@ -39,7 +39,7 @@ std::vector<std::vector<double>> read_states(const std::string& path, const std:
     while (std::getline(in, line)) {
         ++number;
         if (!line.empty() && line.back() == '\r') line.pop_back();
-        const std::string where = path + ":" + std::to_string(number) + ": ";
+        const std::string where = printable(path) + ":" + std::to_string(number) + ": ";
         if (number == 1) {
             if (line != expected_header)
                 throw scene_error(where + "header '" + line + "'; expected '" + expected_header + "'");
@@ -54,7 +54,7 @@ std::vector<std::vector<double>> read_states(const std::string& path, const std:
             throw scene_error(where + "more than " + shortest(max_ensemble_size) + " states; expected at most that");
         states.push_back(std::move(x));
     }
-    if (number == 0) throw scene_error(path + ": empty; expected the header '" + expected_header + "' and states");
+    if (number == 0) throw scene_error(printable(path) + ": empty; expected the header '" + expected_header + "' and states");
     return states;
 }
 
@@ -102,15 +102,15 @@ ensemble_point point_at(const scene& s, const system_entry& entry, const paramet
 }
 
 ensemble_setup set_up_ensemble(const scene& s, double max_steps) {
-    if (!s.ensemble) throw invalid_argument(s.source + ": the scene has no [ensemble] table");
+    if (!s.ensemble) throw invalid_argument(printable(s.source) + ": the scene has no [ensemble] table");
     const ensemble_spec& e = *s.ensemble;
     ensemble_setup u{.s = &s, .entry = find_system(s.system), .base = system_of(s)};
     if (!u.base.ensemble)
-        throw invalid_argument(s.source + ": " + s.system +
+        throw invalid_argument(printable(s.source) + ": " + s.system +
                                " is not a separable Hamiltonian H = T(p) + V(q); an ensemble runs splitting tables on one");
     const double span_steps = std::ceil((s.t_end - s.t0) / s.dt[0] - 1e-9);
     if (!(span_steps <= max_steps))
-        throw invalid_argument(s.source + ": each trajectory at dt = " + shortest(s.dt[0]) + " over t = " + shortest(s.t0) +
+        throw invalid_argument(printable(s.source) + ": each trajectory at dt = " + shortest(s.dt[0]) + " over t = " + shortest(s.t0) +
                                " .. " + shortest(s.t_end) + " takes " + format_number(span_steps, 6) +
                                " steps; the limit is " + format_number(max_steps, 6) + " (raise it with --max-steps)");
     if (e.grid.empty()) u.states = read_states(e.states_file, state_columns(u.base.system, u.base.degrees_of_freedom));
@@ -124,7 +124,7 @@ ensemble_setup set_up_ensemble(const scene& s, double max_steps) {
                                   2 * 25 * (4 * n + axes + 8);
     const double held = double(u.trajectories) * per_trajectory;
     if (!(held <= memory_budget_bytes))
-        throw invalid_argument(s.source + ": " + std::to_string(u.trajectories) + " trajectories of " +
+        throw invalid_argument(printable(s.source) + ": " + std::to_string(u.trajectories) + " trajectories of " +
                                format_number(n, 6) + " degrees of freedom would hold " +
                                format_number(held / double(1 << 30), 3) + " GiB (about " +
                                format_number(per_trajectory, 3) + " bytes each: start, row and ensemble.csv's line); "
@@ -132,7 +132,7 @@ ensemble_setup set_up_ensemble(const scene& s, double max_steps) {
                                " GiB (docs/reliability.md, \"Memory\"); expected fewer points");
     const double total = double(u.trajectories) * span_steps;
     if (total > 1e4 * max_steps)
-        throw invalid_argument(s.source + ": " + std::to_string(u.trajectories) + " trajectories of " +
+        throw invalid_argument(printable(s.source) + ": " + std::to_string(u.trajectories) + " trajectories of " +
                                format_number(span_steps, 6) + " steps are " + format_number(total, 6) +
                                " trajectory-steps; the limit is 1e4 times --max-steps = " + format_number(1e4 * max_steps, 6));
     u.defaults = with_defaults(*u.entry, s.parameters, s.source);

@@ -34,11 +34,11 @@ void check_scenes(const std::vector<scene>& scenes, const report_options& option
     std::set<std::string> names;
     for (const scene& s : scenes)
         if (!names.insert(s.name).second)
-            throw scene_error(s.source + ": a second scene named '" + s.name + "'; expected each scene name once");
+            throw scene_error(printable(s.source) + ": a second scene named '" + s.name + "'; expected each scene name once");
     systems.reserve(scenes.size());  // plans point into systems and scenes: no reallocation after this
     for (const scene& s : scenes)
         if (s.test_particles)  // a map of one method, not a comparison of methods
-            throw scene_error(s.source + ": a scene with [test_particles] is a MEGNO map, not a comparison of "
+            throw scene_error(printable(s.source) + ": a scene with [test_particles] is a MEGNO map, not a comparison of "
                               "methods; expected it run by `sympl run`");
     for (const scene& s : scenes) {
         systems.push_back(system_of(s));

@@ -205,12 +205,18 @@ public:
     const checkpoint_record* restore() {
         const checkpoint_record* from = c_.rq.checkpoint.resume;
         if (!from) return nullptr;
-        if constexpr (has_memory) stepper_.restore(from_record<typename Stepper::state_type::vector>(from->memory));
-        const std::string who = "checkpoint of '" + c_.m.name + "'";
-        sympl::detail::carried_reader<double> r{from->carried, who.c_str()};
-        r.part(more_);
-        if constexpr (has_carried) stepper_.restore_carried(r.rest());
-        r.done();
+        // A list that does not fit is refused naming the file, as the record's other fields are.
+        const std::string& file = c_.rq.checkpoint.resume_file;
+        const std::string who = "checkpoint " + (file.empty() ? "" : printable(file) + " ") + "of '" + c_.m.name + "'";
+        try {
+            if constexpr (has_memory) stepper_.restore(from_record<typename Stepper::state_type::vector>(from->memory));
+            sympl::detail::carried_reader<double> r{from->carried, who.c_str()};
+            r.part(more_);
+            if constexpr (has_carried) stepper_.restore_carried(r.rest());
+            r.done();
+        } catch (const invalid_argument& e) {
+            throw invalid_argument(std::string(e.what()) + "; not resumed from (remove it to start over)");
+        }
         forces_before_ = from->memory.force_evaluations;
         velocities_before_ = from->memory.velocity_evaluations;
         done_ = from->step;

@@ -87,11 +87,16 @@ struct run_kind<method_kind::logh> {
         const checkpoint_record* from = nullptr;
         template <class Self, class List>
         static void carried_fields(Self& self, List& l) {
+            // p_t is -H(x0), set by to_extended and never changed by a step
+            // (its force is 0): a p_t read that differs would change every
+            // step's length dt/ds = 1/(T + p_t) (a huge one: endless).
+            const double p_t = self.X.p[self.X.size() - 1];
             l.values(self.X.q);
             l.values(self.X.p);
             l.check(!self.from || (physical_time(self.X) == self.from->time &&
-                                   to_vector(physical_state(self.X)) == self.from->state),
-                    "holds an extended state whose time or (q, p) is not the record's");
+                                   to_vector(physical_state(self.X)) == self.from->state &&
+                                   self.X.p[self.X.size() - 1] == p_t),
+                    "holds an extended state whose time, (q, p) or p_t is not the run's");
         }
     };
 

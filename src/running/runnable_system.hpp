@@ -29,6 +29,7 @@ inline constexpr double growth_limit = 1e12;
 struct checkpoint_hooks {
     std::size_t every_steps = 0;  // 0: none
     const checkpoint_record* resume = nullptr;
+    std::string resume_file;  // the file `resume` was read from, for a refusal's message
     std::function<void(checkpoint_record&)> save;
 };
 

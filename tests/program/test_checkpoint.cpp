@@ -194,18 +194,19 @@ TEST_CASE("checkpoint: a stepper's memory of the wrong size is refused, not read
 }
 
 TEST_CASE("checkpoint: LogH's carried time and state are held to the record's") {
-    // The extended state LogH carries holds the time the run goes on from; a
-    // record with it set back (the checksum recomputed) ran to the step limit.
+    // The extended state LogH carries holds the time the run goes on from and
+    // p_t, which sets every step's length; a record with the time set back
+    // or p_t made huge (the checksum recomputed) ran to the step limit.
     kepler_run run("logh(leapfrog_kdk)");
     const checkpoint_record& first = run.first;
     REQUIRE(first.carried.size() == 6);  // (q, t) then (p, p_t), Kepler in the plane
     CHECK(first.carried[2] == first.time);
-    for (const int changed : {2, 0, 4}) {  // the time, a coordinate, a momentum
+    for (const int changed : {2, 0, 4, 5}) {  // the time, a coordinate, a momentum, p_t
         CAPTURE(changed);
         checkpoint_record r = first;
         r.carried[std::size_t(changed)] = changed == 2 ? -1e300 : r.carried[std::size_t(changed)] * (1 + 1e-15);
         CHECK_THROWS_WITH_AS(run.resumed_from(r),
-                             doctest::Contains("holds an extended state whose time or (q, p) is not the record's"),
+                             doctest::Contains("holds an extended state whose time, (q, p) or p_t is not the run's"),
                              sympl::error);
     }
     CHECK(run.resumed_from(first).stable);  // as written: resumes

@@ -119,6 +119,12 @@ TEST_CASE("scene: a name's control characters, a megabyte name and a thousand un
     CHECK(e.rfind("scene.toml:4:36: unknown method 'rk\\0x\\nred\\x1b[31m'", 0) == 0);
     CHECK(e.find('\n') == std::string::npos);
     CHECK(e.find('\x1b') == std::string::npos);
+    // UTF-8's C1 controls (U+009B is an escape's start on some terminals), beside letters that are not.
+    const std::string c1 = method_error("r\\u009b31m\\u0085\\u00e9");
+    CHECK(c1.find("unknown method 'r\\u009b31m\\u0085\xc3\xa9'") != std::string::npos);
+    // A scene path with a newline and an escape is quoted escaped.
+    CHECK_THROWS_WITH_AS(load_scene("/nonexistent/a\nb\x1b.toml"),
+                         doctest::Contains("/nonexistent/a\\nb\\x1b.toml: cannot open"), scene_error);
     // A name of a megabyte is quoted by its start and end, with the count cut.
     const std::string m = method_error(std::string(1 << 20, 'q'));
     CHECK(m.size() < 2100);
