@@ -661,6 +661,52 @@ TEST_CASE("kepler_drift: a hyperbolic flyby from far out to far out in one drift
     CHECK(worst_h <= 16);
 }
 
+TEST_CASE("kepler_drift: flybys from very far out, in double and float, keep E and h to rounding per piece") {
+    // Started at |F0| = 12..25 (float: 6..10), Kepler's equation of the
+    // whole drift itself cancels by about e^(2 |F0|), so its root is no guide
+    // to the pieces (it put a body at |r| = 2e55 instead of 4.4e5, found by
+    // review): the pieces stop on time. Each of the n pieces adds a few
+    // roundings (C = 16) of |r||v| to h and of |v|^2 / 2 + GM / r to E, the
+    // latter at a piece boundary, at least one unit of anomaly from the
+    // pericentre, up to 2 / (e cosh 1 - 1) < 4 times the ends' scale; the
+    // impact parameter b = |r0 x v0| / |v0| is held to a relative eps r0 / b
+    // (r0 / b from 1e4 to 1e11), and the distance reached with it: |r(h)| to
+    // C n eps r0 / b.
+    std::mt19937_64 rng(37);
+    std::uniform_real_distribution<double> u(0, 1);
+    const auto trial = [&](auto zero, double f_low, double f_high, double& worst_e, double& worst_h, double& worst_r) {
+        using S = decltype(zero);
+        using V = Eigen::Matrix<S, 3, 1>;
+        const ld e = 1 + ld(0.01 + 2.0 * u(rng)), q = std::pow(10.0L, -3 + 2 * ld(u(rng)));
+        const elements el = random_orientation(rng, 1, -q / (e - 1), e);
+        const ld F0 = -ld(f_low + (f_high - f_low) * u(rng)), M0 = e * std::sinh(F0) - F0, M1 = -1.2L * M0;
+        const ld_state x0 = state_at(el, M0), exact = state_at(el, M1);
+        V r = x0.r.cast<S>(), v = x0.v.cast<S>();
+        const ld_state start{r.template cast<ld>(), v.template cast<ld>()};
+        kepler_drift(r, v, S(1), S((M1 - M0) / el.mean_motion()));
+        const ld_state end{r.template cast<ld>(), v.template cast<ld>()};
+        const ld n = std::ceil((solve_kepler(e, M1) - F0) / 2), eps_s = std::numeric_limits<S>::epsilon();
+        const auto energy_scale = [](const ld_state& x) { return x.v.squaredNorm() / 2 + 1 / x.r.norm(); };
+        worst_e = std::max(worst_e, double(std::fabs(energy(end, 1) - energy(start, 1)) /
+                                           (n * eps_s * std::max(energy_scale(start), energy_scale(end)))));
+        worst_h = std::max(worst_h, double((end.r.cross(end.v) - start.r.cross(start.v)).norm() /
+                                           (n * eps_s * std::max(end.r.norm() * end.v.norm(), start.r.norm() * start.v.norm()))));
+        const ld sensitivity = start.r.norm() * start.v.norm() / start.r.cross(start.v).norm();
+        worst_r = std::max(worst_r, double(std::fabs(end.r.norm() / exact.r.norm() - 1) / (n * eps_s * sensitivity)));
+    };
+    double e_double = 0, h_double = 0, r_double = 0, e_float = 0, h_float = 0, r_float = 0;
+    for (int i = 0; i < 100; ++i) trial(0.0, 12, 25, e_double, h_double, r_double);
+    for (int i = 0; i < 100; ++i) trial(0.0f, 6, 10, e_float, h_float, r_float);
+    MESSAGE("double: |E1 - E0| <= " << e_double << " n eps scale, |h1 - h0| <= " << h_double << " n eps |r||v|, |r| to "
+                                    << r_double << " n eps r0 / b; float: " << e_float << ", " << h_float << ", " << r_float);
+    CHECK(e_double <= 64);
+    CHECK(h_double <= 16);
+    CHECK(r_double <= 16);
+    CHECK(e_float <= 64);
+    CHECK(h_float <= 16);
+    CHECK(r_float <= 16);
+}
+
 TEST_CASE("kepler_drift: bad input names the value and the body") {
     V3d r(1, 0, 0), v(0, 1, 0), zero = V3d::Zero();
     CHECK_THROWS_WITH_AS(kepler_drift(zero, v, 1.0, 0.1), doctest::Contains("|r| = 0"), invalid_argument);

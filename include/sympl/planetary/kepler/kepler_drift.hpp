@@ -76,36 +76,24 @@ inline constexpr S hyperbolic_piece_limit = 36;
 template <class S>
 inline constexpr S hyperbolic_cancellation_limit = 256;
 
-// One solve of Kepler's equation and its f and g update; returns 0. Where
-// may_split and the drift is a long hyperbolic one, moves nothing and returns
-// the root s for drift_in_pieces.
+// One solve of Kepler's equation and its f and g update. Where may_split and
+// the drift is a long hyperbolic one whose sums cancel, moves nothing and
+// returns false (drift_in_pieces takes it).
 template <class S>
-S drift_by_one_solve(S* r, S* v, S gm, S h, bool may_split) {
+bool drift_by_one_solve(S* r, S* v, S gm, S h, bool may_split) {
     const S r0 = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
     const S eta0 = r[0] * v[0] + r[1] * v[1] + r[2] * v[2];
     const S v2 = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
     const kepler_orbit<S> o = make_orbit(r0, eta0, v2, gm, h);
-    if (o.h == 0) return 0;  // whole periods: back at the start
+    if (o.h == 0) return true;  // whole periods: back at the start
     const kepler_residual<S> k = solve_universal(o, starting_value(o));
     const f_and_g<S> fg = f_and_g_at(r0, eta0, gm, k.g1, k.g2, k.r);
     if (may_split && o.beta < 0 && -o.beta * k.s * k.s > hyperbolic_piece_limit<S> &&
         (2 + std::fabs(fg.fm1)) * r0 + (r0 * std::fabs(k.g1) + std::fabs(eta0 * k.g2)) * std::sqrt(v2) >
             hyperbolic_cancellation_limit<S> * k.r)
-        return k.s;
+        return false;
     apply_f_and_g(fg, r[0], r[1], r[2], v[0], v[1], v[2]);
-    return 0;
-}
-
-// One piece of length d in the universal variable (its G's at hand): the
-// body moved by f and g, the piece's time t(d) (Danby 1988, eq. 6.9.16)
-// returned.
-template <class S>
-S drift_piece(S* r, S* v, S gm, const stumpff_values<S>& c, S d) {
-    const S g1 = d * c.c1, g2 = d * d * c.c2, g3 = d * d * d * c.c3;
-    const S r0 = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
-    const S eta0 = r[0] * v[0] + r[1] * v[1] + r[2] * v[2];
-    drift_by_f_and_g(r, v, r0, eta0, gm, g1, g2, (r0 * c.c0 + eta0 * g1) + gm * g2);
-    return (r0 * g1 + eta0 * g2) + gm * g3;
+    return true;
 }
 
 template <class S>
@@ -115,42 +103,71 @@ stumpff_values<S> stumpff_at(S x) {
     return c;
 }
 
-// The drift over h whose root is s, in pieces of anomaly change 2 (length
-// D = 2 / sqrt(-beta) in s), so that every f and g sum is of terms near the
-// result's size. A pericentre passed on the way lies mid-piece: a piece
-// boundary there would hold the body where GM / r, and the rounding of its
-// energy, is largest (e near 1: 2 / (e - 1) times the energy's scale far
-// out). Each piece's time is taken off h and the last piece is solved for
-// the time left, so the pieces add up to h. With the G's finite (cosh
-// overflows past 710), sqrt(-beta) |s| < 710: at most 356 pieces.
+// One piece of length d in the universal variable, its Stumpff values c at
+// beta d^2 at hand, where its time t(d) (Danby 1988, eq. 6.9.16) is within
+// the time left: the body moved by f and g, and `left` less t(d). Else
+// nothing moves and false is returned.
 template <class S>
-void drift_in_pieces(S* r, S* v, S gm, S h, S s) {
+bool drift_piece(S* r, S* v, S gm, const stumpff_values<S>& c, S d, S& left) {
+    const S g1 = d * c.c1, g2 = d * d * c.c2, g3 = d * d * d * c.c3;
     const S r0 = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
     const S eta0 = r[0] * v[0] + r[1] * v[1] + r[2] * v[2];
-    const S beta = 2 * gm / r0 - (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    const S root = std::sqrt(-beta), sign = s > 0 ? S(1) : S(-1), D = 2 / root;
-    // The anomaly F0 at the start (sinh F0 = es / e, as in starting_value) and
-    // the s of the pericentre, F = 0: -F0 / sqrt(-beta), ahead when of s's sign.
-    const S ec = 1 - beta * r0 / gm, es = eta0 * root / gm;
-    const S e = std::sqrt(std::max(S(0), (ec - es) * (ec + es)));
-    const S ahead = e > 0 ? -sign * std::asinh(es / e) / root : S(-1);
-    S first = 0;  // |s| of the first, shorter piece: its end is D / 2 past the pericentre
-    if (ahead > 0 && ahead < std::fabs(s)) first = std::fmod(ahead + D / 2, D);
-    S left = h, done = 0;
-    if (first > 0 && first < std::fabs(s)) {
-        left -= drift_piece(r, v, gm, stumpff_at(beta * first * first), sign * first);
-        done = first;
+    const S t = (r0 * g1 + eta0 * g2) + gm * g3;
+    if (!((left > 0) ? (left - t > 0) : (left - t < 0))) return false;
+    drift_by_f_and_g(r, v, r0, eta0, gm, g1, g2, (r0 * c.c0 + eta0 * g1) + gm * g2);
+    left -= t;
+    return true;
+}
+
+// Most pieces of one drift: with the G's finite (cosh overflows past 710) a
+// drift's anomaly changes by less than 1420, 710 pieces.
+inline constexpr int most_hyperbolic_pieces = 1024;
+
+// The drift over h in pieces of anomaly change 2, so that every f and g sum
+// is of terms near the result's size; each piece's length in the universal
+// variable, D = 2 / sqrt(-beta), from the beta of its own start (beta D^2 =
+// -4 always: Stumpff's functions once), its time taken off h while it fits,
+// the last piece solved for the time left, so that the pieces add up to h
+// (the whole drift's root is not used: from far out Kepler's equation itself
+// cancels). A pericentre passed on the way lies mid-piece: a piece boundary
+// there would hold the body where GM / r, and the rounding of its energy, is
+// largest (e near 1: 2 / (e - 1) times the energy's scale far out).
+template <class S>
+void drift_in_pieces(S* r, S* v, S gm, S h) {
+    const S sign = h > 0 ? S(1) : S(-1);
+    S left = h;
+    {
+        // The anomaly F0 at the start (e sinh F0 = eta0 sqrt(-beta) / GM, e
+        // from the angular momentum: 1 for a radial orbit, no cancellation)
+        // and the time to the pericentre, F = 0, by Kepler's equation
+        // e sinh F - F = n t (Danby 1988, sec. 6.5).
+        const S r0 = std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+        const S eta0 = r[0] * v[0] + r[1] * v[1] + r[2] * v[2];
+        const S beta = 2 * gm / r0 - (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        const S lx = r[1] * v[2] - r[2] * v[1], ly = r[2] * v[0] - r[0] * v[2], lz = r[0] * v[1] - r[1] * v[0];
+        const S root = std::sqrt(-beta), e = std::sqrt(1 - beta * ((lx * lx + ly * ly + lz * lz) / (gm * gm)));
+        const S es = eta0 * root / gm, f0 = std::asinh(es / e), n = -beta * root / gm;
+        const S to_pericentre = (f0 - es) / n;
+        if (sign * f0 < 0 && std::fabs(to_pericentre) < std::fabs(h)) {
+            // The first piece ends one unit of anomaly past the pericentre, less whole pieces.
+            const S first = std::fmod(std::fabs(f0) + 1, S(2)) / root;
+            if (first > 0) (void)drift_piece(r, v, gm, stumpff_at(beta * first * first), sign * first, left);
+        }
     }
-    const stumpff_values<S> c = stumpff_at(beta * D * D);
-    for (; done + D < std::fabs(s); done += D) left -= drift_piece(r, v, gm, c, sign * D);
-    if (left != 0) drift_by_one_solve(r, v, gm, left, false);
+    const stumpff_values<S> c = stumpff_at(S(-4));
+    for (int piece = 0; piece < most_hyperbolic_pieces; ++piece) {
+        const S beta = 2 * gm / std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]) -
+                       (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        if (!(beta < 0) || !drift_piece(r, v, gm, c, sign * 2 / std::sqrt(-beta), left)) break;
+    }
+    if (left != 0) (void)drift_by_one_solve(r, v, gm, left, false);
 }
 
 template <class S>
 void kepler_drift_body(S* r, S* v, S gm, S h, std::ptrdiff_t body) {
     check_kepler_input(r, v, gm, h, body);
     if (h == 0) return;
-    if (const S s = drift_by_one_solve(r, v, gm, h, true); s != 0) drift_in_pieces(r, v, gm, h, s);
+    if (!drift_by_one_solve(r, v, gm, h, true)) drift_in_pieces(r, v, gm, h);
     for (int i = 0; i < 3; ++i)
         if (!std::isfinite(r[i]) || !std::isfinite(v[i]))
             throw invalid_argument("kepler_drift: h = " + number_text(h) + body_text<S>(body) +
