@@ -705,6 +705,23 @@ TEST_CASE("kepler_drift: flybys from very far out, in double and float, keep E a
     CHECK(e_float <= 64);
     CHECK(h_float <= 16);
     CHECK(r_float <= 16);
+    // A drift that ends beyond sqrt(max), where |r| no longer squares (a = -1,
+    // e = 2, F from -5 to 356 and 700; float to 45): the pieces stop short of
+    // it and one solve goes on (the review found these refused as overflowing).
+    for (const ld f1 : {356.0L, 400.0L, 700.0L}) {
+        const elements el{1, -1, 2, 0.3L, 1.1L, 2.0L};
+        const ld M0 = 2 * std::sinh(-5.0L) + 5, M1 = 2 * std::sinh(f1) - f1;
+        const ld_state x0 = rounded(state_at(el, M0));
+        const ld exact = std::fabs(el.a) * (el.e * std::cosh(f1) - 1);
+        ld_state x = x0;
+        drift(x, 1, double((M1 - M0) / el.mean_motion()));
+        CAPTURE(double(f1));
+        CHECK(double(std::fabs(x.r.norm() / exact - 1)) <= 1e-9);
+    }
+    const ld_state start = state_at({1, -1, 2, 0, 0, 0}, 2 * std::sinh(-5.0L) + 5);
+    Eigen::Vector3f rf = start.r.cast<float>(), vf = start.v.cast<float>();
+    kepler_drift(rf, vf, 1.0f, float((2 * std::sinh(45.0L) - 45) - (2 * std::sinh(-5.0L) + 5)));
+    CHECK(double(std::fabs(rf.cast<ld>().norm() / (2 * std::cosh(45.0L) - 1) - 1)) <= 1e-3);
 }
 
 TEST_CASE("kepler_drift: bad input names the value and the body") {

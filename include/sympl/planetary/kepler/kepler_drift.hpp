@@ -155,10 +155,14 @@ void drift_in_pieces(S* r, S* v, S gm, S h) {
         }
     }
     const stumpff_values<S> c = stumpff_at(S(-4));
+    // A piece moves |r| by at most e^2 (< 8): from |r|^2 above max / 4096
+    // the next could pass sqrt(max), where |r| no longer squares; the rest,
+    // outward and far out, where the sums cancel little, goes in one solve.
+    constexpr S farthest = std::numeric_limits<S>::max() / 4096;
     for (int piece = 0; piece < most_hyperbolic_pieces; ++piece) {
-        const S beta = 2 * gm / std::sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]) -
-                       (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-        if (!(beta < 0) || !drift_piece(r, v, gm, c, sign * 2 / std::sqrt(-beta), left)) break;
+        const S r2 = r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
+        const S beta = 2 * gm / std::sqrt(r2) - (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        if (!(r2 <= farthest) || !(beta < 0) || !drift_piece(r, v, gm, c, sign * 2 / std::sqrt(-beta), left)) break;
     }
     if (left != 0) (void)drift_by_one_solve(r, v, gm, left, false);
 }
