@@ -46,11 +46,12 @@ inline std::string counter(std::size_t i, std::size_t n) {
     return text.str();
 }
 
-// A message as the program prints it: one line, as written.
-// Control characters a name may hold (a NUL that would end the message, a
-// newline that would split it, a terminal's escape) are written as \0, \n,
-// \x1b, and UTF-8's C1 controls as \u0080..\u009f; a message past 2000 characters (a megabyte name quoted in it) keeps
-// its first 1200 and last 600 with the count cut between them.
+// A message as the program prints it: one line, as written. Control
+// characters a name may hold (a NUL that would end the message, a newline
+// that would split it, a terminal's escape) are written as \0, \n, \x1b,
+// and UTF-8's C1 controls as \u0080..\u009f; a message past 2000
+// characters (a megabyte name quoted in it) keeps its first 1200 and last
+// 600 with the count cut between them.
 inline std::string printable(const std::string& what) {
     static constexpr char hex[] = "0123456789abcdef";
     std::string out;
