@@ -175,6 +175,88 @@ private:
     void (*force_derivative_)(const void*, const erased_vector&, const erased_vector&, erased_vector&) = nullptr;
 };
 
+// An erased separable system on fixed-size states of N degrees of freedom:
+// the generic path's RKN pairs on a state of one number (generic_path.cpp),
+// whose stage sums on dynamic-size vectors cost about twice the compiled
+// pairs' (docs/speed.md, "The generic path"). A call on a fixed-size vector
+// copies its N numbers into the dynamic vector the erased call takes and the
+// result back; a call on dynamic vectors is the erased system's own (the
+// program's form and energy read those).
+template <int N>
+class erased_fixed_size {
+public:
+    using fixed = Eigen::Matrix<double, N, 1>;
+    explicit erased_fixed_size(erased_separable sys) : sys_(std::move(sys)) {}
+
+    template <class V>
+        requires erased_separable::takes<scalar_of<V>> && std::same_as<V, erased_vector_of<scalar_of<V>>>
+    scalar_of<V> kinetic(const V& p) const {
+        return sys_.kinetic(p);
+    }
+    template <class V>
+        requires erased_separable::takes<scalar_of<V>> && std::same_as<V, erased_vector_of<scalar_of<V>>>
+    scalar_of<V> potential(const V& q) const {
+        return sys_.potential(q);
+    }
+    template <class V>
+        requires erased_separable::takes<scalar_of<V>> && std::same_as<V, erased_vector_of<scalar_of<V>>>
+    void force(const V& q, V& f) const {
+        sys_.force(q, f);
+    }
+    template <class V>
+        requires erased_separable::takes<scalar_of<V>> && std::same_as<V, erased_vector_of<scalar_of<V>>>
+    void velocity(const V& p, V& v) const {
+        sys_.velocity(p, v);
+    }
+
+    double kinetic(const fixed& p) const {
+        double t = 0;
+        through(p, [&](const erased_vector& in, erased_vector&) { t = sys_.kinetic(in); });
+        return t;
+    }
+    double potential(const fixed& q) const {
+        double v = 0;
+        through(q, [&](const erased_vector& in, erased_vector&) { v = sys_.potential(in); });
+        return v;
+    }
+    void force(const fixed& q, fixed& f) const {
+        f = through(q, [&](const erased_vector& in, erased_vector& out) { sys_.force(in, out); });
+    }
+    void velocity(const fixed& p, fixed& v) const {
+        v = through(p, [&](const erased_vector& in, erased_vector& out) { sys_.velocity(in, out); });
+    }
+    bool velocity_is_p() const { return sys_.velocity_is_p(); }
+
+private:
+    // The call on x copied into this thread's dynamic vectors; its result
+    // copied out. A call made inside another (a Python force that runs
+    // sympl) gets vectors of its own, so the outer call's input stays put.
+    template <class Call>
+    static fixed through(const fixed& x, Call&& call) {
+        struct scratch {
+            erased_vector in = erased_vector(N), out = erased_vector(N);
+            bool busy = false;
+        };
+        thread_local scratch s;
+        if (s.busy) {
+            erased_vector in = x, out(N);
+            call(std::as_const(in), out);
+            return out;
+        }
+        struct release {
+            bool& busy;
+            ~release() { busy = false; }
+        };
+        s.busy = true;
+        const release guard{s.busy};
+        s.in = x;
+        call(std::as_const(s.in), s.out);
+        return s.out;
+    }
+
+    erased_separable sys_;
+};
+
 // Any H(q, p), type-erased: on doubles, long doubles (the reference) and the
 // dual numbers of Gauss-Legendre's Newton Jacobian in both.
 class erased_general {

@@ -41,8 +41,19 @@ events_function events_of(erased_separable sys) {
 
 }  // namespace
 
+// The RKN pairs on a state of one degree of freedom (a pendulum) run on
+// fixed-size states; every other method on the dynamic-size ones. On a
+// dynamic state of one number the pairs' stage sums cost about twice the
+// compiled pairs' (docs/speed.md, "The generic path").
 run_function generic_run(erased_separable sys, energy_function energy) {
-    return generic_runner(std::move(sys), std::move(energy));
+    using one_dof_pairs = runner<erased_fixed_size<1>, 1, compiled_methods{.kinds = kind_set{method_kind::dprkn}}>;
+    return [every = generic_runner(sys, energy), one = one_dof_pairs(erased_fixed_size<1>(sys), energy)](
+               const method_spec& m, const run_request& rq, double t0, double t_end, const std::vector<double>& x0) {
+        if (m.kind != method_kind::dprkn || x0.size() != 2) return every(m, rq, t0, t_end, x0);
+        run_result out = one(m, rq, t0, t_end, x0);
+        out.generic = true;
+        return out;
+    };
 }
 
 generic_parts generic_separable(erased_separable sys, energy_function energy) {

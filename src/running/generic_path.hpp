@@ -4,9 +4,10 @@
 // dynamic-size states: every method kind but Wisdom-Holman and the charged
 // pushers, the long-double reference, ensembles (one trajectory a lane) and
 // Poincare sections. These templates are compiled twice in all
-// (generic_path.cpp: once for separable systems, once for any H(q, p))
-// instead of once per system; each force, velocity or H costs one indirect
-// call more (docs/speed.md, "The generic path").
+// (generic_path.cpp: once for separable systems, once for any H(q, p);
+// the RKN pairs a third time, on states of one degree of freedom) instead
+// of once per system; each force, velocity or H costs one indirect call
+// more (docs/speed.md, "The generic path").
 #include <functional>
 #include <string>
 #include <vector>
