@@ -181,7 +181,8 @@ checkpoint_record read_checkpoint(const fs::path& file, const std::string& scene
         l.read(r.method.data(), std::streamsize(n));
         if (l.gcount() != std::streamsize(n)) refuse(file, "ends inside the method's name");
         b.finished(l, "method");
-        if (r.method != method) refuse(file, "is of method '" + r.method + "', not '" + method + "'");
+        if (r.method != method)
+            refuse(file, "is of method '" + printable(r.method) + "', not '" + printable(method) + "'");
     }
     {
         auto l = b.line("dt");

@@ -155,11 +155,14 @@ struct odeint_run {
         std::uint64_t& evaluations;
         Stepper& stepper;
         std::size_t size;
+        const checkpoint_record* from = nullptr;  // the record resumed from
         template <class Self, class List>
         static void carried_fields(Self& self, List& l) {
             l.number(self.t), l.number(self.dt);
             l.check(std::isfinite(self.t) && std::isfinite(self.dt) && self.dt > 0 && self.t + self.dt > self.t,
                     "holds a time and step that cannot step");
+            // The record's time was observed at this t: another would go on from elsewhere.
+            l.check(!self.from || self.t == self.from->time, "holds a time that is not the run's");
             l.whole(self.evaluations, "holds a bad count of evaluations");
             if constexpr (std::is_same_v<Stepper, bulirsch_stoer_vector>) {
                 bulirsch_stoer_history history{self.stepper, self.size};
@@ -188,7 +191,7 @@ struct odeint_run {
         odeint_workspace<double, Dim> w;
         const auto f = make_odeint_system<Dim>(sys, &w);
         double t = t0;
-        odeint_carried<Stepper> more{t, dt, w.evaluations, stepper, std::size_t(2 * x.q.size())};
+        odeint_carried<Stepper> more{t, dt, w.evaluations, stepper, std::size_t(2 * x.q.size()), rq.checkpoint.resume};
         return checkpointed_run(*this, stepper, more, [&](observer observe, const checkpoint_record* from, const auto&) {
             Y y = to_odeint<Dim, Y>(x);  // the record's state when resumed
             std::size_t steps = 0;

@@ -45,6 +45,7 @@ struct run_kind<method_kind::dprkn> {
     // controller's state (time, next step, last error, the summary so far).
     struct controller {
         controller_state<double>& state;
+        const checkpoint_record* from = nullptr;  // the record resumed from
         template <class Self, class List>
         static void carried_fields(Self& self, List& l) {
             controller_state<double>& s = self.state;
@@ -58,6 +59,10 @@ struct run_kind<method_kind::dprkn> {
             l.whole(m.rejected, "holds a bad count of rejected steps");
             l.number(m.t), l.number(m.dt_smallest), l.number(m.dt_largest), l.number(m.largest_error);
             l.whole(m.force_evaluations, "holds a bad count of force evaluations");
+            // The record's time and step were observed from this state: one
+            // set apart would go on from another time, or count on from another step.
+            l.check(!self.from || (s.t == self.from->time && m.accepted == self.from->step),
+                    "holds a controller time or count of accepted steps that is not the run's");
         }
     };
 
@@ -72,7 +77,7 @@ struct run_kind<method_kind::dprkn> {
             const control_summary s = integrate_controlled(stepper, c.x, c.t0, c.t_end, control, observer{}, state);
             return {s.accepted, s.force_evaluations};
         }
-        controller more{state};
+        controller more{state, c.rq.checkpoint.resume};
         return checkpointed_run(c, stepper, more, [&](observer observe, const checkpoint_record*, const auto&) {
             const control_summary s = integrate_controlled(stepper, c.x, c.t0, c.t_end, control, observe, state);
             return steps_and_forces{s.accepted, s.force_evaluations};  // the summary counts the whole run

@@ -66,11 +66,11 @@ struct kepler_run {
     runnable_system p;
     run_request rq;
     checkpoint_record first;
-    explicit kepler_run(const std::string& method)
+    explicit kepler_run(const std::string& method, std::size_t every = 50)
         : s(parse_scene("system = \"kepler\"\nmethods = [\"" + method + "\"]\nt_end = 3\ndt = 0.01\n", "k.toml")),
           p(system_of(s)), rq(plan_runs(s, p, sweep_use::first).runs.front().request()) {
         bool saved = false;
-        rq.checkpoint.every_steps = 50;
+        rq.checkpoint.every_steps = every;
         rq.checkpoint.save = [&](checkpoint_record& r) {
             if (!std::exchange(saved, true)) first = r;
         };
@@ -162,6 +162,11 @@ TEST_CASE("checkpoint: truncated, corrupted, foreign or mismatched files are ref
     } catch (const sympl::error& e) {
         CHECK(std::string(e.what()).find("is of method 'compensated(blanes_moan_s6)', not 'rk4'") != std::string::npos);
     }
+    // The method's name as the file holds it, control characters and all:
+    // quoted escaped.
+    says(refused_for(with_body("\nmethod 27 compensated(blanes_moan_s6)\n", "\nmethod 9 a\x1b[31mb\tc\n"), r.scene_hash,
+                     r.dt),
+         "is of method 'a\\x1b[31mb\\tc', not 'compensated(blanes_moan_s6)'");
     says(refusal(dir / "missing", r, r.scene_hash, r.dt), "cannot be opened");
     // A directory and a device where the checkpoint should be: refused by
     // their kind, unread (an uncaught std::ios_base::failure before).
@@ -210,6 +215,39 @@ TEST_CASE("checkpoint: LogH's carried time and state are held to the record's") 
                              sympl::error);
     }
     CHECK(run.resumed_from(first).stable);  // as written: resumes
+}
+
+TEST_CASE("checkpoint: a controlled run's carried time and step count are held to the record's") {
+    // A controlled pair's controller and an Odeint run carry their time (and
+    // the pair its count of accepted steps) beside the record's: one set
+    // apart (the checksum recomputed) went on from another time or counted
+    // on from another step.
+    kepler_run pair("dprkn8_controlled", 5);
+    const checkpoint_record& first = pair.first;
+    REQUIRE(first.carried.size() > 4);  // t, dt, the last error, accepted, rejected, ...
+    CHECK(first.carried[0] == first.time);
+    CHECK(first.carried[3] == double(first.step));
+    for (const int changed : {0, 3}) {
+        CAPTURE(changed);
+        checkpoint_record r = first;
+        r.carried[std::size_t(changed)] = changed == 0 ? r.carried[0] * (1 + 1e-15) : r.carried[3] + 1;
+        CHECK_THROWS_WITH_AS(
+            pair.resumed_from(r),
+            doctest::Contains("holds a controller time or count of accepted steps that is not the run's"),
+            sympl::error);
+    }
+    CHECK(pair.resumed_from(first).stable);  // as written: resumes
+    for (const char* method : {"odeint_dopri5", "odeint_rk4"}) {
+        CAPTURE(method);
+        kepler_run run(method, 5);
+        REQUIRE(run.first.carried.size() > 2);  // t, dt, evaluations, ...
+        CHECK(run.first.carried[0] == run.first.time);
+        checkpoint_record r = run.first;
+        r.carried[0] = r.carried[0] * (1 + 1e-15);
+        CHECK_THROWS_WITH_AS(run.resumed_from(r), doctest::Contains("holds a time that is not the run's"),
+                             sympl::error);
+        CHECK(run.resumed_from(run.first).stable);
+    }
 }
 
 TEST_CASE("checkpoint: a record's fields are held to the run it resumes, each refusal naming the field") {
