@@ -107,6 +107,32 @@ TEST_CASE("run: a reference that blows up is reported as the reference's failure
     CHECK_FALSE(json[1].contains("final_error"));
 }
 
+TEST_CASE("run: files that would not fit on their file system are refused before anything runs") {
+    // 1e12 steps, a trajectory row and an energy row each: about 1e14 bytes,
+    // more than any disk of a machine that runs the tests has free.
+    const fs::path dir = scratch_directory("sympl_test_run_disk");
+    fs::remove_all(dir);
+    const scene s = parse_scene("name = \"d\"\nsystem = \"pendulum\"\nmethods = [\"leapfrog_kdk\"]\ndt = 1e-3\n"
+                                "t_end = 1e9\n[output]\ntrajectory_every = 1\nenergy_every = 1\ndirectory = \"" +
+                                    dir.string() + "/out\"\n",
+                                "d.toml");
+    std::ostringstream out;
+    try {
+        run_scene(s, false, out, 1e13);
+        FAIL("a run of 1e14 bytes of files was not refused");
+    } catch (const scene_error& e) {
+        const std::string message = e.what();
+        CAPTURE(message);
+        CHECK(message.find("d.toml: the run's files would take about 1e+05 GB (1e+12 trajectory rows of 3 numbers, "
+                           "1e+12 energy rows") == 0);
+        CHECK(message.find("output.directory's file system (") != std::string::npos);
+        CHECK(message.find("GB free; expected fewer rows (a larger output.trajectory_every or output.energy_every)") !=
+              std::string::npos);
+    }
+    CHECK_FALSE(fs::exists(dir));  // nothing made
+    CHECK(out.str().empty());
+}
+
 TEST_CASE("run: the trajectory of a run that blows up ends with a line that says so") {
     const fs::path dir = scratch_directory("sympl_test_run_truncated");
     fs::remove_all(dir);
