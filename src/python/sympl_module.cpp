@@ -322,25 +322,27 @@ public:
                                "; expected True or False (stopping after a count of crossings is not offered)");
     }
 
-    // Events of a splitting table's run (drivers/events.hpp) as SciPy's
-    // solve_ivp takes them: callables g(t, q, p) with optional attributes
-    // `terminal` (stop at the first crossing) and `direction` (> 0 rising,
-    // < 0 falling, 0 both). Each g is called with the GIL held, at every step
+    // Events of a splitting table's or an RKN pair's run (drivers/events.hpp)
+    // as SciPy's solve_ivp takes them: callables g(t, q, p) with optional
+    // attributes `terminal` (stop at the first crossing) and `direction` (> 0
+    // rising, < 0 falling, 0 both). A controlled pair steps to `tolerance`
+    // from a first step dt. Each g is called with the GIL held, at every step
     // end and inside Brent's search: the slow path, as a Python force is.
     py::dict events(const std::string& method, double t_end, double dt, const py::list& gs, double t0,
-                    const py::object& x0) const {
+                    const py::object& x0, double tolerance) const {
         if (!sys_.events)
             throw invalid_argument(name_ + " has no events here; expected a separable Hamiltonian H = T(p) + V(q)");
         const method_spec m = method_named(method);
-        if (m.kind != method_kind::table || !m.coefficients || m.extrapolation_columns || m.compensated)
-            throw invalid_argument("events method '" + method + "'; expected a plain splitting table");
+        if (const std::string why = why_not(m, sys_.form); !why.empty()) throw invalid_argument(why);
         if (!(dt > 0 && std::isfinite(dt))) throw invalid_argument("dt = " + shortest(dt) + "; expected a finite step > 0");
         if (!(std::isfinite(t0) && std::isfinite(t_end) && t_end > t0))
             throw invalid_argument("t0 = " + shortest(t0) + ", t_end = " + shortest(t_end) +
                                    "; expected finite times with t_end > t0");
-        if ((t_end - t0) / dt > default_max_steps)
+        if (!adaptive(m) && (t_end - t0) / dt > default_max_steps)
             throw invalid_argument("(t_end - t0) / dt = " + shortest((t_end - t0) / dt) + " steps; expected at most " +
                                    shortest(default_max_steps));
+        if (adaptive(m) && !(tolerance > 0 && tolerance < 1))
+            throw invalid_argument("tolerance = " + shortest(tolerance) + "; expected a value in (0, 1)");
         if (gs.empty()) throw invalid_argument("events: an empty list; expected one callable g(t, q, p) or more");
         const std::vector<double> x = x0.is_none() ? sys_.x0 : vector_of(x0, "x0");
         if (x.size() != sys_.x0.size())
@@ -374,7 +376,7 @@ public:
         event_outcome o;
         {
             py::gil_scoped_release released;
-            o = sys_.events(*m.coefficients, dt, t0, t_end, x, specs);
+            o = sys_.events(m, dt, tolerance, t0, t_end, x, specs);
         }
         py::list t_events, q_events, p_events;
         for (std::size_t k = 0; k < specs.size(); ++k) {
@@ -801,11 +803,13 @@ PYBIND11_MODULE(sympl, m) {
              "The upward crossings of q[0] = 0 (a Poincare section) of `steps` steps of dt by a splitting table: "
              "rows of q then p")
         .def("events", &sympl::app::python::system::events, py::arg("method"), py::arg("t_end"), py::arg("dt"),
-             py::arg("events"), py::arg("t0") = 0.0, py::arg("x0") = py::none(),
-             "A splitting table's run with events, as SciPy's solve_ivp takes them: callables g(t, q, p), with "
-             "optional attributes terminal (stop at the first crossing) and direction (> 0 rising, < 0 falling); "
-             "each crossing located on the cubic Hermite interpolant by Brent's method. A dict: t_events, q_events, "
-             "p_events (a list per event), stopped, t and final_state (where the run ended)")
+             py::arg("events"), py::arg("t0") = 0.0, py::arg("x0") = py::none(), py::arg("tolerance") = 1e-8,
+             "A splitting table's or an RKN pair's run with events, as SciPy's solve_ivp takes them: callables "
+             "g(t, q, p), with optional attributes terminal (stop at the first crossing) and direction (> 0 rising, "
+             "< 0 falling); each crossing located by Brent's method on the cubic Hermite interpolant of the step, "
+             "or on a controlled pair's own interpolation (dprkn8_controlled: steps to `tolerance`, dt its first "
+             "trial step). A dict: t_events, q_events, p_events (a list per event), stopped, t and final_state "
+             "(where the run ended)")
         .def("ensemble", &sympl::app::python::system::ensemble, py::arg("starts"), py::arg("method"), py::arg("t_end"),
              py::arg("dt"), py::arg("t0") = 0.0, py::arg("sample_every") = 10, py::arg("megno") = false,
              py::arg("threads") = 0,

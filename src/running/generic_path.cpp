@@ -11,12 +11,15 @@ namespace sympl::app::detail {
 
 namespace {
 
-// A splitting table's events on the generic path (drivers/events.hpp): each
-// g called on the stacked state, which costs a copy a call; g is the user's
-// (a Python callable, say), which costs more.
+// A method's events on the generic path (drivers/events.hpp): a plain
+// splitting table's or an RKN pair's, at fixed steps of dt (located on the
+// cubic Hermite interpolant), or a pair controlled to `tolerance` (absolute
+// = relative; dt its first trial step), located on the pair's own
+// interpolation. Each g is called on the stacked state, which costs a copy
+// a call; g is the user's (a Python callable, say), which costs more.
 events_function events_of(erased_separable sys) {
-    return [sys = std::move(sys)](const table& m, double dt, double t0, double t_end, const std::vector<double>& x0,
-                                  const std::vector<event_spec>& specs) {
+    return [sys = std::move(sys)](const method_spec& m, double dt, double tolerance, double t0, double t_end,
+                                  const std::vector<double>& x0, const std::vector<event_spec>& specs) {
         using S = state_of<Eigen::Dynamic>;
         std::vector<event<S>> events;
         for (const event_spec& e : specs)
@@ -27,15 +30,37 @@ events_function events_of(erased_separable sys) {
                               : e.direction < 0 ? event_direction::falling
                                                 : event_direction::both,
                               e.stop ? event_action::stop : event_action::record});
-        splitting_stepper<erased_separable, S> stepper(sys, m);
         S x = from_stacked<S>(x0);
-        const auto run = integrate_events(stepper, sys, x, t0, t_end, dt, events);
-        event_outcome out;
-        for (const auto& h : run.hits) out.hits.push_back({h.event, h.t, to_vector(h.state)});
-        out.stopped = run.stopped;
-        out.t = run.t;
-        out.x = to_vector(x);
-        return out;
+        const auto outcome_of = [&](const auto& run) {
+            event_outcome out;
+            for (const auto& h : run.hits) out.hits.push_back({h.event, h.t, to_vector(h.state)});
+            out.stopped = run.stopped;
+            out.t = run.t;
+            out.x = to_vector(x);
+            return out;
+        };
+        const auto with_pair = [&]<class Pair>(Pair) {
+            auto stepper = make_rkn_stepper<Pair, S>(sys);
+            if (!adaptive(m)) return outcome_of(integrate_events(stepper, sys, x, t0, t_end, dt, events));
+            control_options control;
+            control.absolute_tolerance = control.relative_tolerance = tolerance;
+            control.dt_initial = dt;
+            return outcome_of(integrate_events(stepper, sys, x, t0, t_end, control, events));
+        };
+        if (m.kind == method_kind::table && m.coefficients && !m.extrapolation_columns && !m.compensated) {
+            splitting_stepper<erased_separable, S> stepper(sys, *m.coefficients);
+            return outcome_of(integrate_events(stepper, sys, x, t0, t_end, dt, events));
+        }
+        if (m.kind == method_kind::dprkn) {
+            switch (m.parameters.pair) {
+                case rkn_pair::dprkn6: return with_pair(dprkn6{});
+                case rkn_pair::dprkn8: return with_pair(dprkn8{});
+                case rkn_pair::dprkn12: return with_pair(dprkn12{});
+            }
+        }
+        throw invalid_argument("events method '" + printable(m.name) +
+                               "'; expected a plain splitting table or an RKN pair (dprkn6, dprkn8, dprkn12, at fixed "
+                               "steps or _controlled)");
     };
 }
 

@@ -123,8 +123,11 @@ struct event_outcome {
     double t = 0;           // where the run ended (t_end, or the stop event's time)
     std::vector<double> x;  // its state there
 };
-using events_function = std::function<event_outcome(const table&, double dt, double t0, double t_end,
-                                                    const std::vector<double>& x0, const std::vector<event_spec>&)>;
+// A method's run with events: a plain splitting table or an RKN pair at
+// steps of dt, or a pair controlled to `tolerance` from a first step dt.
+using events_function =
+    std::function<event_outcome(const method_spec&, double dt, double tolerance, double t0, double t_end,
+                                const std::vector<double>& x0, const std::vector<event_spec>&)>;
 using reference_function =
     std::function<std::vector<double>(double t0, double t_end, double dt, const std::vector<double>& x0)>;
 

@@ -371,9 +371,50 @@ def test_events_are_located_as_scipy_takes_them_and_stop_a_run():
         osc.events("leapfrog_kdk", t_end=1.0, dt=dt, events=[counted])
     with pytest.raises(TypeError, match="is not callable; expected callables g"):
         osc.events("blanes_moan_s6", t_end=1.0, dt=dt, events=[1.5])
-    with pytest.raises(ValueError, match="events method 'rk4'; expected a plain splitting table"):
+    with pytest.raises(ValueError, match="events method 'rk4'; expected a plain splitting table or an RKN pair"):
         osc.events("rk4", t_end=1.0, dt=dt, events=[q_zero])
     with pytest.raises(ValueError, match="g = nan at t = 0; expected a finite value"):
         osc.events("leapfrog_kdk", t_end=1.0, dt=dt, events=[lambda t, q, p: float("nan")])
     with pytest.raises(ZeroDivisionError):  # the callable's own exception, as Python raised it
         osc.events("leapfrog_kdk", t_end=1.0, dt=dt, events=[lambda t, q, p: 1 / 0])
+
+
+def test_events_over_rkn_pairs_at_fixed_steps_and_controlled():
+    # The oscillator's crossings of q = 0 (pi/2 + k pi) by the RKN pairs. At
+    # fixed steps, on the step's cubic Hermite interpolant: within dt^4/384
+    # (dprkn8's own error is far below it). Controlled, on the pair's own
+    # interpolation: each accepted step errs by at most the tolerance per
+    # component (absolute + relative, |x| <= 1), carried along by a rotation,
+    # so q, and the time (|dq/dt| = 1 there), by 2 (steps + 1) tol.
+    osc = sympl.System("harmonic_oscillator")
+    exact = np.array([math.pi / 2 + k * math.pi for k in range(6)])
+
+    def q_zero(t, q, p):
+        return q[0]
+
+    dt = 0.05
+    fixed = osc.events("dprkn8", t_end=20.0, dt=dt, events=[q_zero])
+    assert fixed["t_events"][0].shape == (6,)
+    assert np.max(np.abs(fixed["t_events"][0] - exact)) <= dt**4 / 384
+    tolerance = 1e-10
+    steps = osc.run("dprkn8_controlled", t_end=20.0, tolerance=tolerance)["steps"]
+    controlled = osc.events("dprkn8_controlled", t_end=20.0, dt=0.2, events=[q_zero], tolerance=tolerance)
+    assert controlled["t_events"][0].shape == (6,)
+    error = np.max(np.abs(controlled["t_events"][0] - exact))
+    assert error <= 2 * (steps + 1) * tolerance
+    assert error < dt**4 / 384 / 100   # the pair's interpolation, not a cubic over its long steps
+
+    def stop(t, q, p):
+        return q[0]
+    stop.terminal = True
+    steps = osc.run("dprkn6_controlled", t_end=20.0, tolerance=tolerance)["steps"]
+    ended = osc.events("dprkn6_controlled", t_end=20.0, dt=0.2, events=[stop], tolerance=tolerance)
+    assert ended["stopped"] is True
+    assert abs(ended["t"] - math.pi / 2) <= 2 * (steps + 1) * tolerance
+    assert abs(ended["final_state"][0]) <= 2 * (steps + 1) * tolerance
+
+    with pytest.raises(ValueError, match=r"tolerance = 2; expected a value in \(0, 1\)"):
+        osc.events("dprkn8_controlled", t_end=1.0, dt=0.2, events=[q_zero], tolerance=2.0)
+    # A kinetic energy that is not quadratic: refused by the system's form, as run() refuses it.
+    with pytest.raises(ValueError, match="needs a kinetic energy quadratic in p"):
+        sympl.System("relativistic_pendulum").events("dprkn8", t_end=1.0, dt=dt, events=[q_zero])
