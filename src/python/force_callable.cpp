@@ -87,6 +87,25 @@ public:
     // Unit masses: drifts move q by p in the kick's pass (splitting_loop.hpp).
     bool velocity_is_p() const { return unit_; }
 
+    // Any other scalar: the dual numbers of Tao's binding and of
+    // Gauss-Legendre's Newton matrix (second derivatives of H), or the long
+    // double of a reference. Asked of a Python force, refused in its terms.
+    template <class V>
+        requires(!std::same_as<V, Eigen::VectorXd>)
+    scalar_of<V> kinetic(const V&) const {
+        refuse_scalar();
+    }
+    template <class V>
+        requires(!std::same_as<V, Eigen::VectorXd>)
+    scalar_of<V> potential(const V&) const {
+        refuse_scalar();
+    }
+    [[noreturn]] static void refuse_scalar() {
+        throw invalid_argument("a Python force gives F(q) in double only, not the second derivatives of H (on dual "
+                               "numbers) that tao(...)'s binding and Gauss-Legendre's Newton iteration take; expected "
+                               "a method that needs the force alone (a splitting table, an RKN pair, rk4, Odeint)");
+    }
+
 private:
     std::shared_ptr<const force_callables> c_;
     Eigen::VectorXd inverse_mass_;

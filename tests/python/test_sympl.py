@@ -264,6 +264,11 @@ def test_a_python_force_is_checked_and_its_errors_reach_python():
         moving.run("leapfrog_kdk", t_end=1.0, dt=0.01)
     with pytest.raises(ValueError, match="megno=True needs the force's derivative"):
         moving.ensemble(np.zeros((2, 2)), "leapfrog_kdk", t_end=1.0, dt=0.1, megno=True)
+    # Tao's binding is chosen from H's second derivatives, on dual numbers: refused in a Python force's terms.
+    spring = sympl.System.from_force(lambda q: -q, q0=[1.0], p0=[0.0], potential=lambda q: 0.5 * float(q @ q))
+    for method in ("tao(leapfrog_kdk)", "tao(leapfrog_kdk, omega = 10)"):
+        with pytest.raises(ValueError, match=r"a Python force gives F\(q\) in double only, not the second derivatives"):
+            spring.run(method, t_end=1.0, dt=0.1)
 
 
 def test_a_formula_system_may_carry_its_exact_solution():
