@@ -2,12 +2,14 @@
 #include "commands/run_scene.hpp"
 
 #include <signal.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <iomanip>
 #include <memory>
@@ -334,50 +336,69 @@ fs::path existing_folder(fs::path path) {
     return path;
 }
 
-// What the run's streamed files would take on disk (trajectories, energy
-// series; a checkpointed run keeps a second copy of its trajectory beside
-// its checkpoint), at about 20 bytes a number as written (measured: 18.9 on
-// the pendulum's trajectory, 19.8 on Henon-Heiles' and on energy series),
-// refused before anything runs when a file system has less free. Runs that
-// choose their own steps (adaptive, LogH) count one row each.
-void check_disk_use(const scene& s, const run_plan& plan, const runnable_system& p) {
-    constexpr double bytes_a_number = 20;
-    const output_spec& o = s.output;
-    double trajectory_rows = 0, energy_rows = 0;
+// The bytes of the checkpoints' trajectories a resumed run finds written.
+double written_before(const scene& s, const run_plan& plan) {
+    double bytes = 0;
+    std::error_code ec;
     for (const planned_run& r : plan.runs) {
-        if (o.trajectory_every) trajectory_rows += std::floor(r.steps / double(o.trajectory_every)) + 1;
-        trajectory_rows += double(o.times.size());
-        if (o.energy_every && p.hamiltonian) energy_rows += std::floor(r.steps / double(o.energy_every)) + 1;
+        const fs::path file = s.checkpoint.file + "." + file_name_part(r.method->name) + ".trajectory";
+        if (const auto size = fs::file_size(file, ec); !ec) bytes += double(size);
     }
-    const double trajectory = trajectory_rows * double(1 + p.x0.size()) * bytes_a_number;
-    const double energy = energy_rows * 2 * bytes_a_number;
-    struct place {
-        fs::path folder;
-        std::string key;
-        double bytes;
-    };
-    std::vector<place> places;
-    if (o.writes_files()) places.push_back({existing_folder(o.directory), "output.directory", trajectory + energy});
+    return bytes;
+}
+
+}  // namespace
+
+output_disk_use disk_use_of(const scene& s, const run_plan& plan, const runnable_system& p) {
+    const output_spec& o = s.output;
+    output_disk_use u;
+    for (const planned_run& r : plan.runs) {
+        // A row per outer step (an extrapolated method's inner steps write
+        // none); one for a run that chooses its own steps.
+        const double steps = r.steps > 0 ? std::ceil((s.t_end - s.t0) / r.dt) : 0;
+        if (o.trajectory_every) u.trajectory_rows += std::floor(steps / double(o.trajectory_every)) + 1;
+        u.trajectory_rows += double(o.times.size());
+        if (o.energy_every && p.hamiltonian) u.energy_rows += std::floor(steps / double(o.energy_every)) + 1;
+    }
+    u.columns = 1 + p.x0.size();
+    const double trajectory = u.trajectory_rows * double(u.columns) * u.bytes_a_number;
+    const double energy = u.energy_rows * 2 * u.bytes_a_number;
+    if (o.writes_files()) u.places.push_back({existing_folder(o.directory), "output.directory", trajectory + energy});
     if (s.checkpoint.every_steps && o.writes_trajectory())
-        places.push_back({existing_folder(fs::path(s.checkpoint.file).parent_path()), "checkpoint.file", trajectory});
-    for (std::size_t i = 0; i < places.size(); ++i) {
-        std::error_code ec;
-        const fs::space_info space = fs::space(places[i].folder, ec);
-        if (ec) continue;  // unknown: not refused on a guess
-        double bytes = places[i].bytes;  // both on one file system: both count
-        if (i == 1 && fs::equivalent(places[0].folder, places[1].folder, ec)) bytes += places[0].bytes;
-        if (bytes <= double(space.available)) continue;
+        u.places.push_back({existing_folder(fs::path(s.checkpoint.file).parent_path()), "checkpoint.file", trajectory});
+    return u;
+}
+
+void check_disk_use(const scene& s, const output_disk_use& u,
+                    const std::function<free_space(const fs::path&)>& space_of, double already_written) {
+    std::vector<free_space> spaces;
+    for (const output_disk_use::place& place : u.places) spaces.push_back(space_of(place.folder));
+    for (std::size_t i = 0; i < u.places.size(); ++i) {
+        if (!spaces[i].known) continue;  // unknown: not refused on a guess
+        // Every place on this file system counts against its free space; a
+        // resumed checkpoint's trajectory is partly written already.
+        double bytes = 0;
+        for (std::size_t j = 0; j < u.places.size(); ++j)
+            if (spaces[j].known && spaces[j].device == spaces[i].device)
+                bytes += u.places[j].bytes - (u.places[j].key == "checkpoint.file" ? already_written : 0);
+        if (bytes <= spaces[i].available) continue;
         throw scene_error(printable(s.source) + ": the run's files would take about " + format_number(bytes / 1e9, 3) +
-                          " GB (" + format_number(trajectory_rows, 3) + " trajectory rows of " +
-                          std::to_string(1 + p.x0.size()) + " numbers, " + format_number(energy_rows, 3) +
-                          " energy rows, about " + format_number(bytes_a_number, 2) + " bytes a number) where " +
-                          places[i].key + "'s file system (" + printable(places[i].folder.string()) + ") has " +
-                          format_number(double(space.available) / 1e9, 3) +
+                          " GB (" + format_number(u.trajectory_rows, 3) + " trajectory rows of " +
+                          std::to_string(u.columns) + " numbers, " + format_number(u.energy_rows, 3) +
+                          " energy rows, about " + format_number(u.bytes_a_number, 2) + " bytes a number) where " +
+                          u.places[i].key + "'s file system (" + printable(u.places[i].folder.string()) + ") has " +
+                          format_number(spaces[i].available / 1e9, 3) +
                           " GB free; expected fewer rows (a larger output.trajectory_every or output.energy_every)");
     }
 }
 
-}  // namespace
+free_space free_space_of(const fs::path& folder) {
+    struct stat st;
+    std::error_code ec;
+    const fs::space_info space = fs::space(folder, ec);
+    if (ec || ::stat(folder.c_str(), &st) != 0) return {};
+    return {.known = true, .device = std::uint64_t(st.st_dev), .available = double(space.available)};
+}
 
 void run_scene(const scene& s, bool json, std::ostream& out, double max_steps, bool resume) {
     const runnable_system p = system_of(s);
@@ -393,7 +414,8 @@ void run_scene(const scene& s, bool json, std::ostream& out, double max_steps, b
                           "between steps needs; use output.trajectory_every");
     if (resume && !s.checkpoint.every_steps)
         throw scene_error(printable(s.source) + ": --resume, but the scene has no checkpoint = {every_steps = N, file = \"...\"}");
-    check_disk_use(s, plan, p);
+    check_disk_use(s, disk_use_of(s, plan, p), free_space_of,
+                   resume && s.checkpoint.every_steps ? written_before(s, plan) : 0);
     const reference_state ref = reference_for_run(s, p, plan, max_steps);
     // Files, when the scene asks for any, are staged and moved into place together.
     std::optional<output_set> outputs;

@@ -11,6 +11,7 @@
 // system cannot take throws where it is called.
 #include <concepts>
 #include <memory>
+#include <string>
 #include <tuple>
 #include <type_traits>
 #include <utility>
@@ -211,28 +212,34 @@ public:
 
     double kinetic(const fixed& p) const {
         double t = 0;
-        through(p, [&](const erased_vector& in, erased_vector&) { t = sys_.kinetic(in); });
+        with_copies(p, [&](const erased_vector& in, erased_vector&) { t = sys_.kinetic(in); });
         return t;
     }
     double potential(const fixed& q) const {
         double v = 0;
-        through(q, [&](const erased_vector& in, erased_vector&) { v = sys_.potential(in); });
+        with_copies(q, [&](const erased_vector& in, erased_vector&) { v = sys_.potential(in); });
         return v;
     }
     void force(const fixed& q, fixed& f) const {
-        f = through(q, [&](const erased_vector& in, erased_vector& out) { sys_.force(in, out); });
+        with_copies(q, [&](const erased_vector& in, erased_vector& out) {
+            sys_.force(in, out);
+            copy_out(out, f);
+        });
     }
     void velocity(const fixed& p, fixed& v) const {
-        v = through(p, [&](const erased_vector& in, erased_vector& out) { sys_.velocity(in, out); });
+        with_copies(p, [&](const erased_vector& in, erased_vector& out) {
+            sys_.velocity(in, out);
+            copy_out(out, v);
+        });
     }
     bool velocity_is_p() const { return sys_.velocity_is_p(); }
 
 private:
-    // The call on x copied into this thread's dynamic vectors; its result
-    // copied out. A call made inside another (a Python force that runs
-    // sympl) gets vectors of its own, so the outer call's input stays put.
+    // The call on x copied into this thread's dynamic vectors. A call made
+    // inside another (a Python force that runs sympl) gets vectors of its
+    // own, so the outer call's input stays put.
     template <class Call>
-    static fixed through(const fixed& x, Call&& call) {
+    static void with_copies(const fixed& x, Call&& call) {
         struct scratch {
             erased_vector in = erased_vector(N), out = erased_vector(N);
             bool busy = false;
@@ -240,8 +247,7 @@ private:
         thread_local scratch s;
         if (s.busy) {
             erased_vector in = x, out(N);
-            call(std::as_const(in), out);
-            return out;
+            return call(std::as_const(in), out);
         }
         struct release {
             bool& busy;
@@ -251,7 +257,14 @@ private:
         const release guard{s.busy};
         s.in = x;
         call(std::as_const(s.in), s.out);
-        return s.out;
+    }
+    // A force or velocity of N numbers into y; any other size refused (a
+    // system that writes another would be read past).
+    static void copy_out(const erased_vector& out, fixed& y) {
+        if (out.size() != N)
+            throw invalid_argument("the system's force or velocity gave " + std::to_string(out.size()) +
+                                   " numbers for a state of " + std::to_string(N) + " degrees of freedom");
+        y = out;
     }
 
     erased_separable sys_;

@@ -128,6 +128,7 @@ TEST_CASE("the generic path's RKN pairs on one degree of freedom give the compil
         const run_result b = generic(m, request(0.05), 0.0, 20.0, pendulum.x0);
         REQUIRE(a.stable);
         REQUIRE(b.stable);
+        CHECK_FALSE(a.generic);  // the pendulum's own pairs, compiled
         CHECK(b.generic);
         CHECK(a.steps == b.steps);
         CHECK(a.force_evaluations == b.force_evaluations);
@@ -142,7 +143,8 @@ namespace {
 const erased_fixed_size<1>* nested_view = nullptr;
 int nested_depth = 0;
 double nested_inner_force = 0;
-struct nesting_system {
+// H = |p|^2 / 2 + |q|^2 / 2, for the test systems below to give their own force.
+struct oscillator_energy {
     template <class V>
     sympl::scalar_of<V> kinetic(const V& p) const {
         return p.squaredNorm() / 2;
@@ -151,6 +153,8 @@ struct nesting_system {
     sympl::scalar_of<V> potential(const V& q) const {
         return q.squaredNorm() / 2;
     }
+};
+struct nesting_system : oscillator_energy {
     void force(const erased_vector& q, erased_vector& f) const {
         f.resize(q.size());
         if (nested_depth++ == 0) {
@@ -174,6 +178,22 @@ TEST_CASE("a fixed-size call made inside another keeps the outer call's input") 
     view.force(q, f);  // and the scratch vectors are free again after it
     CHECK(f[0] == -3.0);
     nested_view = nullptr;
+}
+
+namespace {
+// A force of two numbers for a state of one.
+struct wrong_size_force : oscillator_energy {
+    void force(const erased_vector& q, erased_vector& f) const { f = erased_vector::Constant(q.size() + 1, 1.0); }
+};
+}  // namespace
+
+TEST_CASE("a fixed-size view refuses a force of another size, not reading past it") {
+    const erased_fixed_size<1> view(erased_separable::of(wrong_size_force{}));
+    Eigen::Matrix<double, 1, 1> q(3.0), f;
+    CHECK_THROWS_WITH_AS(view.force(q, f),
+                         doctest::Contains("the system's force or velocity gave 2 numbers for a state of 1 degrees "
+                                           "of freedom"),
+                         sympl::invalid_argument);
 }
 
 }  // namespace test_program_test_generic_path

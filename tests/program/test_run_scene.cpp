@@ -109,12 +109,14 @@ TEST_CASE("run: a reference that blows up is reported as the reference's failure
 
 TEST_CASE("run: files that would not fit on their file system are refused before anything runs") {
     // 1e12 steps, a trajectory row and an energy row each: about 1e14 bytes,
-    // more than any disk of a machine that runs the tests has free.
+    // more than any disk of a machine that runs the tests has free. The
+    // scene asks for a reference too, which is refused after the disk (in
+    // a moment, not after 1e12 steps) should the disk check not run.
     const fs::path dir = scratch_directory("sympl_test_run_disk");
     fs::remove_all(dir);
     const scene s = parse_scene("name = \"d\"\nsystem = \"pendulum\"\nmethods = [\"leapfrog_kdk\"]\ndt = 1e-3\n"
-                                "t_end = 1e9\n[output]\ntrajectory_every = 1\nenergy_every = 1\ndirectory = \"" +
-                                    dir.string() + "/out\"\n",
+                                "t_end = 1e9\n[output]\nfinal_error = true\ntrajectory_every = 1\nenergy_every = 1\n"
+                                "directory = \"" + dir.string() + "/out\"\n",
                                 "d.toml");
     std::ostringstream out;
     try {
@@ -131,6 +133,46 @@ TEST_CASE("run: files that would not fit on their file system are refused before
     }
     CHECK_FALSE(fs::exists(dir));  // nothing made
     CHECK(out.str().empty());
+}
+
+TEST_CASE("run: the disk a run's files take, counted per file system") {
+    // 1e4 steps of the pendulum (3 numbers a row), a trajectory row each, at
+    // 20 bytes a number: 600,060 bytes in the output directory, and once
+    // more beside the checkpoint.
+    const auto scene_with = [](const std::string& method, const std::string& more) {
+        return parse_scene("name = \"d\"\nsystem = \"pendulum\"\nmethods = [\"" + method +
+                               "\"]\ndt = 0.125\nt_end = 1250\n" + more + "[output]\ntrajectory_every = 1\n",
+                           "d.toml");
+    };
+    const scene plain = scene_with("leapfrog_kdk", "");
+    const runnable_system p = system_of(plain);
+    const output_disk_use u = disk_use_of(plain, plan_runs(plain, p, sweep_use::first), p);
+    CHECK(u.trajectory_rows == 10001);
+    CHECK(u.columns == 3);
+    REQUIRE(u.places.size() == 1);
+    CHECK(u.places[0].bytes == 10001 * 3 * 20);
+    // An extrapolated method writes a row per outer step, whatever its inner ones.
+    const scene extrapolated = scene_with("extrapolated(leapfrog_kdk, 4)", "");
+    CHECK(disk_use_of(extrapolated, plan_runs(extrapolated, p, sweep_use::first), p).trajectory_rows == 10001);
+    // With a checkpoint: two places, on one device or two.
+    const scene checkpointed = scene_with("leapfrog_kdk", "checkpoint = {every_steps = 100, file = \"state/run\"}\n");
+    const output_disk_use both = disk_use_of(checkpointed, plan_runs(checkpointed, p, sweep_use::first), p);
+    REQUIRE(both.places.size() == 2);
+    CHECK(both.places[1].key == "checkpoint.file");
+    const double one = 10001 * 3 * 20;
+    const auto device = [](std::uint64_t d, double available) {
+        return [=](const fs::path&) { return free_space{.known = true, .device = d, .available = available}; };
+    };
+    CHECK_NOTHROW(check_disk_use(checkpointed, both, device(7, 2 * one), 0));
+    CHECK_THROWS_WITH_AS(check_disk_use(checkpointed, both, device(7, 2 * one - 1), 0),
+                         doctest::Contains("the run's files would take about 0.0012 GB"), scene_error);
+    CHECK_NOTHROW(check_disk_use(checkpointed, both, device(7, 2 * one - 1), 1));  // 1 byte written before
+    int asked = 0;
+    const auto two_devices = [&](const fs::path&) {
+        return free_space{.known = true, .device = std::uint64_t(asked++), .available = one};
+    };
+    CHECK_NOTHROW(check_disk_use(checkpointed, both, two_devices, 0));
+    CHECK_NOTHROW(check_disk_use(checkpointed, both, [](const fs::path&) { return free_space{}; }, 0));
 }
 
 TEST_CASE("run: the trajectory of a run that blows up ends with a line that says so") {
