@@ -358,7 +358,8 @@ output_disk_use disk_use_of(const scene& s, const run_plan& plan, const runnable
         const double steps = r.steps > 0 ? std::ceil((s.t_end - s.t0) / r.dt) : 0;
         if (o.trajectory_every) u.trajectory_rows += std::floor(steps / double(o.trajectory_every)) + 1;
         u.trajectory_rows += double(o.times.size());
-        if (o.energy_every && p.hamiltonian) u.energy_rows += std::floor(steps / double(o.energy_every)) + 1;
+        if (o.energy_every && o.energy_error && p.hamiltonian)
+            u.energy_rows += std::floor(steps / double(o.energy_every)) + 1;
     }
     u.columns = 1 + p.x0.size();
     const double trajectory = u.trajectory_rows * double(u.columns) * u.bytes_a_number;

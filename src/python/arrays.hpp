@@ -45,7 +45,4 @@ inline py::array_t<double> rows_of(const std::string& csv, std::size_t columns) 
     return a;
 }
 
-// The tables Python made (sympl.Table), by name, for method names to use
-// (as a scene's [[table]]s): one per name in a process.
-
 }  // namespace sympl::app::python

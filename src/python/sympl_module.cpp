@@ -9,14 +9,11 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <map>
-#include <mutex>
-#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -34,10 +31,7 @@
 #include "python/methods_by_name.hpp"
 #include "python/system.hpp"
 #include "methods/method_kinds.hpp"
-#include "methods/run_plan.hpp"
-#include "output/checkpoint.hpp"
 #include "output/format.hpp"
-#include "reading/near_names.hpp"
 #include "reading/scene.hpp"
 #include "report/report.hpp"
 #include "running/systems.hpp"

@@ -256,6 +256,7 @@ private:
         s.busy = true;
         const release guard{s.busy};
         s.in = x;
+        s.out.resize(N);  // as the last call left it, which may have been refused for its size
         call(std::as_const(s.in), s.out);
     }
     // A force or velocity of N numbers into y; any other size refused (a

@@ -24,7 +24,7 @@ events_function events_of(erased_separable sys) {
         std::vector<event<S>> events;
         for (const event_spec& e : specs)
             // g by reference: `specs` outlives the run, and a copy of a
-            // caller's g may own a Python object (src/python/sympl_module.cpp).
+            // caller's g may own a Python object (src/python/system_events.cpp).
             events.push_back({[&g = e.g](const S& x, double t) { return g(t, to_vector(x)); },
                               e.direction > 0   ? event_direction::rising
                               : e.direction < 0 ? event_direction::falling

@@ -110,13 +110,14 @@ TEST_CASE("run: a reference that blows up is reported as the reference's failure
 TEST_CASE("run: files that would not fit on their file system are refused before anything runs") {
     // 1e12 steps, a trajectory row and an energy row each: about 1e14 bytes,
     // more than any disk of a machine that runs the tests has free. The
-    // scene asks for a reference too, which is refused after the disk (in
-    // a moment, not after 1e12 steps) should the disk check not run.
+    // oscillator at omega dt = 3 is unstable: should the disk check not run,
+    // the run blows up within its first steps and returns, and the test fails
+    // at once instead of running 1e12 steps.
     const fs::path dir = scratch_directory("sympl_test_run_disk");
     fs::remove_all(dir);
-    const scene s = parse_scene("name = \"d\"\nsystem = \"pendulum\"\nmethods = [\"leapfrog_kdk\"]\ndt = 1e-3\n"
-                                "t_end = 1e9\n[output]\nfinal_error = true\ntrajectory_every = 1\nenergy_every = 1\n"
-                                "directory = \"" + dir.string() + "/out\"\n",
+    const scene s = parse_scene("name = \"d\"\nsystem = \"harmonic_oscillator\"\nparameters = {omega = 10}\n"
+                                "methods = [\"leapfrog_kdk\"]\ndt = 0.3\nt_end = 3e11\n[output]\ntrajectory_every = 1\n"
+                                "energy_every = 1\ndirectory = \"" + dir.string() + "/out\"\n",
                                 "d.toml");
     std::ostringstream out;
     try {
@@ -167,11 +168,21 @@ TEST_CASE("run: the disk a run's files take, counted per file system") {
     CHECK_THROWS_WITH_AS(check_disk_use(checkpointed, both, device(7, 2 * one - 1), 0),
                          doctest::Contains("the run's files would take about 0.0012 GB"), scene_error);
     CHECK_NOTHROW(check_disk_use(checkpointed, both, device(7, 2 * one - 1), 1));  // 1 byte written before
+    CHECK_THROWS_AS(check_disk_use(checkpointed, both, device(7, 2 * one - 2), 1), scene_error);  // taken off once
+    // On two devices each place counts alone; what the checkpoint's
+    // trajectory holds already is taken off its own place only.
     int asked = 0;
-    const auto two_devices = [&](const fs::path&) {
-        return free_space{.known = true, .device = std::uint64_t(asked++), .available = one};
+    const auto two_devices = [&](double output_free) {
+        asked = 0;
+        return [&asked, output_free, one](const fs::path&) {
+            const bool output = asked++ == 0;  // the places are asked in order: output, checkpoint
+            return free_space{
+                .known = true, .device = std::uint64_t(output ? 1 : 2), .available = output ? output_free : one};
+        };
     };
-    CHECK_NOTHROW(check_disk_use(checkpointed, both, two_devices, 0));
+    CHECK_NOTHROW(check_disk_use(checkpointed, both, two_devices(one), 0));
+    CHECK_THROWS_WITH_AS(check_disk_use(checkpointed, both, two_devices(one - 1), 5),
+                         doctest::Contains("where output.directory's file system"), scene_error);
     CHECK_NOTHROW(check_disk_use(checkpointed, both, [](const fs::path&) { return free_space{}; }, 0));
 }
 

@@ -1,4 +1,4 @@
-"""The Python module `sympl` (src/python/sympl_module.cpp): the program's systems,
+"""The Python module `sympl` (src/python/: sympl_module.cpp, system.cpp, ...): the program's systems,
 methods and report from Python, each result against what theory or the C++ side gives."""
 import math
 
