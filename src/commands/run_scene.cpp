@@ -95,6 +95,14 @@ std::string as_text(const scene& s, const outcome& o) {
     return l.str();
 }
 
+// One method's checkpoint, FILE.<method>, and its trajectory's rows so far.
+fs::path checkpoint_file(const scene& s, const scene_method& m) {
+    return s.checkpoint.file + "." + file_name_part(m.name);
+}
+fs::path checkpoint_trajectory_file(const scene& s, const scene_method& m) {
+    return checkpoint_file(s, m).string() + ".trajectory";
+}
+
 // One method's checkpoints: FILE.<method> and, when the scene writes a
 // trajectory, the rows so far in FILE.<method>.trajectory (the checkpoint
 // records how many bytes of it belong to the run).
@@ -102,8 +110,8 @@ class checkpointed_method {
 public:
     checkpointed_method(const scene& s, const scene_method& m, double dt, bool resume, std::string trajectory_header,
                         std::size_t state_size)
-        : s_(&s), m_(&m), dt_(dt), file_(s.checkpoint.file + "." + file_name_part(m.name)),
-          trajectory_file_(file_.string() + ".trajectory"), with_trajectory_(!trajectory_header.empty()) {
+        : s_(&s), m_(&m), dt_(dt), file_(checkpoint_file(s, m)), trajectory_file_(checkpoint_trajectory_file(s, m)),
+          with_trajectory_(!trajectory_header.empty()) {
         if (file_.has_parent_path()) fs::create_directories(file_.parent_path());
         remove_stale_temporaries();
         if (resume && fs::exists(file_)) {
@@ -341,8 +349,7 @@ double written_before(const scene& s, const run_plan& plan) {
     double bytes = 0;
     std::error_code ec;
     for (const planned_run& r : plan.runs) {
-        const fs::path file = s.checkpoint.file + "." + file_name_part(r.method->name) + ".trajectory";
-        if (const auto size = fs::file_size(file, ec); !ec) bytes += double(size);
+        if (const auto size = fs::file_size(checkpoint_trajectory_file(s, *r.method), ec); !ec) bytes += double(size);
     }
     return bytes;
 }

@@ -107,6 +107,18 @@ TEST_CASE("run: a reference that blows up is reported as the reference's failure
     CHECK_FALSE(json[1].contains("final_error"));
 }
 
+namespace {
+// The oscillator at omega dt = 3, unstable: it blows up within its first
+// steps. `output` holds the [output] table's keys beside directory = dir.
+scene unstable_oscillator(const std::string& name, const std::string& t_end, const std::string& output,
+                          const fs::path& dir) {
+    return parse_scene("name = \"" + name + "\"\nsystem = \"harmonic_oscillator\"\nparameters = {omega = 10}\n"
+                       "methods = [\"leapfrog_kdk\"]\ndt = 0.3\nt_end = " + t_end + "\n[output]\n" + output +
+                           "directory = \"" + dir.string() + "\"\n",
+                       name + ".toml");
+}
+}  // namespace
+
 TEST_CASE("run: files that would not fit on their file system are refused before anything runs") {
     // 1e12 steps, a trajectory row and an energy row each: about 1e14 bytes,
     // more than any disk of a machine that runs the tests has free. The
@@ -115,10 +127,7 @@ TEST_CASE("run: files that would not fit on their file system are refused before
     // at once instead of running 1e12 steps.
     const fs::path dir = scratch_directory("sympl_test_run_disk");
     fs::remove_all(dir);
-    const scene s = parse_scene("name = \"d\"\nsystem = \"harmonic_oscillator\"\nparameters = {omega = 10}\n"
-                                "methods = [\"leapfrog_kdk\"]\ndt = 0.3\nt_end = 3e11\n[output]\ntrajectory_every = 1\n"
-                                "energy_every = 1\ndirectory = \"" + dir.string() + "/out\"\n",
-                                "d.toml");
+    const scene s = unstable_oscillator("d", "3e11", "trajectory_every = 1\nenergy_every = 1\n", dir / "out");
     std::ostringstream out;
     try {
         run_scene(s, false, out, 1e13);
@@ -189,10 +198,7 @@ TEST_CASE("run: the disk a run's files take, counted per file system") {
 TEST_CASE("run: the trajectory of a run that blows up ends with a line that says so") {
     const fs::path dir = scratch_directory("sympl_test_run_truncated");
     fs::remove_all(dir);
-    const scene s = parse_scene("name = \"t\"\nsystem = \"harmonic_oscillator\"\nparameters = {omega = 10}\n"
-                                "methods = [\"leapfrog_kdk\"]\ndt = 0.3\nt_end = 100\n[output]\ntrajectory_every = 1\n"
-                                "directory = \"" + dir.string() + "\"\n",
-                                "t.toml");
+    const scene s = unstable_oscillator("t", "100", "trajectory_every = 1\n", dir);
     std::ostringstream out;
     run_scene(s, false, out);
     CHECK(out.str().find("UNSTABLE") != std::string::npos);
