@@ -121,8 +121,6 @@ py::list systems_list() {
     return out;
 }
 
-// The report over scene files (none: the built-in set), written to `out` as
-// the program writes it; its work-precision rows returned as columns.
 // A CSV file the report wrote, column by column: numbers as float arrays
 // (an empty field NaN), the rest as lists of strings (a field in quotes may
 // hold commas).
@@ -204,7 +202,12 @@ toml::table toml_of(const py::dict& d, const std::string& where, int depth) {
     return t;
 }
 
-py::dict report(const py::list& scene_list, const std::string& out, bool quick, bool plots, int threads) {
+// The report over scene files (none: the built-in set), written to `out` as
+// the program writes it; its work-precision rows returned as columns, and
+// with plots the figures of plot_report, defined in `self` (this module, as
+// it was loaded: under whatever name, never imported again by one).
+py::dict report(const py::module_& self, const py::list& scene_list, const std::string& out, bool quick, bool plots,
+                int threads) {
     // Files by path, dicts as their TOML text (the program's reader checks both alike).
     std::vector<std::pair<std::string, std::string>> scenes;  // (path, "") or (name, text)
     for (std::size_t k = 0; k < scene_list.size(); ++k) {
@@ -240,7 +243,7 @@ py::dict report(const py::list& scene_list, const std::string& out, bool quick, 
     result["summary"] = printed.str();
     result["directory"] = out;
     // plots: the program's gnuplot PNGs, and matplotlib's figures where it is installed.
-    result["figures"] = plots ? figures_of(py::module_::import("sympl"), result) : py::dict();
+    result["figures"] = plots ? figures_of(self, result) : py::dict();
     return result;
 }
 
@@ -344,7 +347,12 @@ PYBIND11_MODULE(sympl, m) {
     m.def("check_table", &checked_table, py::arg("kick"), py::arg("drift"), py::arg("convention") = "kick-first",
           "The order conditions and the measured order of coefficients, as `sympl check-table --json`");
     sympl::app::python::add_figures(m);
-    m.def("report", &report, py::arg("scenes") = py::list(), py::arg("out") = "sympl-report",
+    // The module by a borrowed handle: it outlives its own functions.
+    m.def("report",
+          [self = py::handle(m)](const py::list& scenes, const std::string& out, bool quick, bool plots, int threads) {
+              return report(py::reinterpret_borrow<py::module_>(self), scenes, out, quick, plots, threads);
+          },
+          py::arg("scenes") = py::list(), py::arg("out") = "sympl-report",
           py::arg("quick") = true, py::arg("plots") = false, py::arg("threads") = 0,
           "The work-precision report over scenes, files or dicts as their TOML holds them (none: the built-in set), "
           "written to `out` as `sympl report` writes it; returns work_precision.csv and time_to_accuracy.csv as "

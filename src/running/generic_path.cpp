@@ -11,14 +11,19 @@ namespace sympl::app::detail {
 
 namespace {
 
-// A method's events on the generic path (drivers/events.hpp): a plain
-// splitting table's or an RKN pair's, at fixed steps of dt (located on the
-// cubic Hermite interpolant), or a pair controlled to `tolerance` (absolute
-// = relative; dt its first trial step), located on the pair's own
-// interpolation. Each g is called on the stacked state, which costs a copy
-// a call; g is the user's (a Python callable, say), which costs more.
-events_function events_of(erased_separable sys) {
-    return [sys = std::move(sys)](const method_spec& m, double dt, double tolerance, double t0, double t_end,
+// A method's events on the generic path (drivers/events.hpp). A plain
+// splitting table's or an RKN pair's at fixed steps of dt are located on the
+// cubic Hermite interpolant, a pair's controlled to `tolerance` (absolute =
+// relative; dt its first trial step) on the pair's own interpolation. Any
+// other kind the generic path runs (compensated and extrapolated tables,
+// processed, LogH with dt its fictitious step, classic steppers, Gauss, Tao,
+// Odeint at `tolerance`) is run by `run`, observed at every step in physical
+// time (run_request::each_step), its events located on the cubic Hermite
+// interpolant between those steps. Each g is called on the stacked state,
+// which costs a copy a call; g is the user's (a Python callable, say),
+// which costs more.
+events_function events_of(erased_separable sys, run_function run) {
+    return [sys = std::move(sys), run = std::move(run)](const method_spec& m, double dt, double tolerance, double t0, double t_end,
                                   const std::vector<double>& x0, const std::vector<event_spec>& specs) {
         using S = state_of<Eigen::Dynamic>;
         std::vector<event<S>> events;
@@ -58,9 +63,34 @@ events_function events_of(erased_separable sys) {
                 case rkn_pair::dprkn12: return with_pair(dprkn12{});
             }
         }
-        throw invalid_argument("events method '" + printable(m.name) +
-                               "'; expected a plain splitting table or an RKN pair (dprkn6, dprkn8, dprkn12, at fixed "
-                               "steps or _controlled)");
+        if (!generic_kinds().has(m.kind))
+            throw invalid_argument("events method '" + printable(m.name) + "' (" + entry_of(m.kind).label +
+                                   "): its runs are not offered with events; expected a method of another kind (a "
+                                   "table, an RKN pair, LogH, Gauss, Tao, a classic or an Odeint stepper)");
+        step_interpolant<erased_separable, S> dense(sys, hermite_order::cubic);
+        run_summary summary;  // steps observed so far
+        const auto drive = [&](auto& observer) {
+            run_request rq;
+            rq.dt = dt;
+            rq.tolerance = tolerance;
+            rq.timing_repeats = 0;
+            bool first = true;
+            S y = x;
+            rq.each_step = [&](double t, const std::vector<double>& state) {
+                y = from_stacked<S>(state);
+                if (!std::exchange(first, false)) ++summary.steps;
+                observer(std::as_const(y), t);
+            };
+            const run_result r = run(m, rq, t0, t_end, x0);
+            if (!r.stable) throw integration_error(r.failure, r.blowup_step, r.blowup_time);
+            x = from_stacked<S>(r.final_state);
+            summary.t = t_end;
+            summary.force_evaluations = r.force_evaluations;
+            return summary;
+        };
+        const auto stopped = [&](std::size_t) { return summary; };
+        return outcome_of(
+            sympl::detail::locate_events<dense_summary>(dense, x, events, event_options{}, "events", drive, stopped));
     };
 }
 
@@ -82,12 +112,14 @@ run_function generic_run(erased_separable sys, energy_function energy) {
 }
 
 generic_parts generic_separable(erased_separable sys, energy_function energy) {
-    return {.run = generic_run(sys, std::move(energy)),
-            .reference_method = splitting_reference_method,
-            .reference = reference_by_splitting(sys),
-            .ensemble = ensemble_of<Eigen::Dynamic, 1>(sys),
-            .section = section_of<Eigen::Dynamic>(sys),
-            .events = events_of(sys)};
+    generic_parts parts{.run = generic_run(sys, std::move(energy)),
+                        .reference_method = splitting_reference_method,
+                        .reference = reference_by_splitting(sys),
+                        .ensemble = ensemble_of<Eigen::Dynamic, 1>(sys),
+                        .section = section_of<Eigen::Dynamic>(sys),
+                        .events = {}};
+    parts.events = events_of(std::move(sys), parts.run);
+    return parts;
 }
 
 }  // namespace sympl::app::detail

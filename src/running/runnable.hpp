@@ -200,6 +200,7 @@ private:
                 *rq.trajectory << '\n';
             }
             if (timed) rows.after_step(x, t);
+            if (rq.each_step) rq.each_step(t, stacked(x));
             if (rq.progress && (step & 0x3FFFF) == 0 && step > 0) rq.progress(t);
             ++step;
         };

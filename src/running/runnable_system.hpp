@@ -55,6 +55,11 @@ struct run_request {
     // Called with the current time every 2^18 steps of the observed run
     // (a terminal's progress line); empty: nothing.
     std::function<void(double t)> progress;
+    // Called with the time and the stacked state (q then p) at t0 and after
+    // every step of the observed run, in physical time for every kind (events
+    // over any method, generic_path.cpp); empty: nothing. An exception it
+    // throws ends the run there.
+    std::function<void(double t, const std::vector<double>& x)> each_step;
     checkpoint_hooks checkpoint;  // tables and classic steppers without history
 };
 

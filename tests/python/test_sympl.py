@@ -113,6 +113,33 @@ def test_the_report_figures_draw_each_methods_runs_in_sweep_order(tmp_path):
         sympl.plot_report(result, "seconds")
 
 
+def test_the_report_draws_with_the_module_as_loaded_under_another_name(tmp_path):
+    # The module inside a package of the user's, with no top-level `sympl`
+    # to import: report(plots=True) must find plot_report in itself.
+    import importlib.util
+    import os
+    import pathlib
+    import shutil
+    import subprocess
+    import sys
+    package = tmp_path / "elsewhere"
+    package.mkdir()
+    (package / "__init__.py").write_text("")
+    shutil.copy(sympl.__file__, package / pathlib.Path(sympl.__file__).name)
+    scene = tmp_path / "pendulum.toml"
+    scene.write_text('system = "pendulum"\nmethods = ["leapfrog_kdk"]\ndt = [0.2, 0.1]\nt_end = 10\n')
+    script = ("import importlib, sys\n"
+              "s = importlib.import_module('elsewhere.sympl')\n"
+              f"r = s.report([{str(scene)!r}], out={str(tmp_path / 'report')!r}, plots=True)\n"
+              "assert 'sympl' not in sys.modules, 'a top-level sympl was imported'\n"
+              "print(sorted(r['figures']))\n")
+    done = subprocess.run([sys.executable, "-c", script], cwd=tmp_path, env={**os.environ, "PYTHONPATH": str(tmp_path)},
+                          capture_output=True, text=True, timeout=300)
+    assert done.returncode == 0, done.stderr
+    drawn = "['final_error', 'max_energy_error']" if importlib.util.find_spec("matplotlib") else "[]"
+    assert done.stdout.strip() == drawn
+
+
 def test_the_walk_through_of_docs_python_md_runs_as_written(tmp_path, monkeypatch):
     import pathlib
     import re
@@ -376,12 +403,76 @@ def test_events_are_located_as_scipy_takes_them_and_stop_a_run():
         osc.events("leapfrog_kdk", t_end=1.0, dt=dt, events=[counted])
     with pytest.raises(TypeError, match="is not callable; expected callables g"):
         osc.events("blanes_moan_s6", t_end=1.0, dt=dt, events=[1.5])
-    with pytest.raises(ValueError, match="events method 'rk4'; expected a plain splitting table or an RKN pair"):
-        osc.events("rk4", t_end=1.0, dt=dt, events=[q_zero])
     with pytest.raises(ValueError, match="g = nan at t = 0; expected a finite value"):
         osc.events("leapfrog_kdk", t_end=1.0, dt=dt, events=[lambda t, q, p: float("nan")])
     with pytest.raises(ZeroDivisionError):  # the callable's own exception, as Python raised it
         osc.events("leapfrog_kdk", t_end=1.0, dt=dt, events=[lambda t, q, p: 1 / 0])
+
+
+def test_events_over_every_other_kind_on_the_steps_it_takes():
+    # Any other kind is observed at its own steps and its crossings read off
+    # the cubic Hermite interpolant between them (exact derivatives from H):
+    # within h^4/384 max|d^4 g/dt^4| / |dg/dt| in time, plus the method's own
+    # error. The oscillator q = cos t crosses q = 0 at pi/2 + k pi (|dq/dt| = 1).
+    osc = sympl.System("harmonic_oscillator")
+    exact = np.array([math.pi / 2 + k * math.pi for k in range(6)])
+
+    def q_zero(t, q, p):
+        return q[0]
+
+    def off(out):
+        assert out["t_events"][0].shape == (6,)
+        return np.max(np.abs(out["t_events"][0] - exact))
+
+    dt = 0.05
+    # Compensated and extrapolated (outer steps of dt): order >= 6, phase error below 1e-9.
+    for method in ("compensated(blanes_moan_s6)", "extrapolated(leapfrog_kdk, 4)"):
+        assert off(osc.events(method, t_end=20.0, dt=dt, events=[q_zero])) <= dt**4 / 384 + 1e-9, method
+    # RK4's local error on a rotation is h^5/120, Gauss-Legendre 4's (the (2,2)
+    # Pade approximant of exp) h^5/720: at time t, t h^4/120 and t h^4/720.
+    assert off(osc.events("rk4", t_end=20.0, dt=0.01, events=[q_zero])) <= 0.01**4 / 384 + 20 * 0.01**4 / 120
+    assert off(osc.events("gauss_4", t_end=20.0, dt=dt, events=[q_zero])) <= dt**4 / 384 + 20 * dt**4 / 720
+    # Odeint's dopri5 at tolerance 1e-10: its steps are about equal on a
+    # rotation (the longest below twice the mean); each accepted step errs by
+    # at most the tolerance, carried on unchanged by a rotation.
+    tolerance = 1e-10
+    steps = osc.run("odeint_dopri5", t_end=20.0, tolerance=tolerance)["steps"]
+    h = 2 * 20.0 / steps
+    assert off(osc.events("odeint_dopri5", t_end=20.0, dt=0.1, events=[q_zero], tolerance=tolerance)) <= \
+        h**4 / 384 + 2 * (steps + 1) * tolerance
+
+    # LogH on the circular Kepler orbit (G M = 1, r = 1): ds/dt = T + p_t = 1,
+    # so its steps are dt long. Its phase error (2.4e-8 a period here) is
+    # read off its own runs: at t = 2 pi k the orbit is at angle phi_k past
+    # the x axis, so y rises through 0 at 2 pi k - phi_k (angular speed 1),
+    # where the events must land within the interpolant's dt^4/384.
+    kepler = sympl.System("kepler", parameters={"eccentricity": 0.0})
+
+    def y_rising(t, q, p):
+        return q[1]
+    y_rising.direction = 1
+    out = kepler.events("logh(blanes_moan_s6)", t_end=20.0, dt=dt, events=[y_rising])
+    assert out["t_events"][0].shape == (3,)
+    for k, t in enumerate(out["t_events"][0], start=1):
+        x, y = kepler.run("logh(blanes_moan_s6)", t_end=2 * math.pi * k, dt=dt)["final_state"][:2]
+        assert abs(t - (2 * math.pi * k - math.atan2(y, x))) <= dt**4 / 384
+
+    # A stop event ends the observed run at its first crossing, interpolated there.
+    def stop(t, q, p):
+        return q[0]
+    stop.terminal = True
+    ended = osc.events("gauss_4", t_end=20.0, dt=dt, events=[stop])
+    assert ended["stopped"] is True
+    assert abs(ended["t"] - math.pi / 2) <= dt**4 / 384 + 20 * dt**4 / 720
+    assert abs(ended["final_state"][0]) <= dt**4 / 384 + 20 * dt**4 / 720
+    # A run that blows up says where; Wisdom-Holman's runs have no events.
+    with pytest.raises(RuntimeError, match="blew up|diverged"):
+        sympl.System("harmonic_oscillator", parameters={"omega": 1e3}).events(
+            "rk4", t_end=20.0, dt=0.05, events=[q_zero])
+    with pytest.raises(ValueError, match=r"events method 'wh\(saba_2\)' \(wisdom_holman\): its runs are not "
+                                         "offered with events"):
+        sympl.System("outer_solar_system").events("wh(saba_2)", t_end=1000.0, dt=100.0,
+                                                  events=[lambda t, q, p: q[0]])
 
 
 def test_events_over_rkn_pairs_at_fixed_steps_and_controlled():
