@@ -3,6 +3,7 @@
 
 #include <signal.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -121,6 +122,14 @@ public:
                                     steps_in_physical_time(m) && m.extrapolation_columns == 0);
         }
         if (!with_trajectory_) return;
+        // Written only as a file this program made: never through a symlink
+        // (a planted one would have its target overwritten), resumed only
+        // from a regular file.
+        std::error_code link;
+        if (fs::is_symlink(trajectory_file_, link))
+            throw error("checkpoint trajectory " + printable(trajectory_file_.string()) +
+                        " is a symlink; expected a file this program made there (or none): it writes no file through "
+                        "a symlink; remove it");
         if (from_) {
             std::error_code ec;
             const auto size = fs::file_size(trajectory_file_, ec);
@@ -142,6 +151,11 @@ public:
             fs::resize_file(trajectory_file_, from_->trajectory_bytes);  // rows written after the checkpoint go
             trajectory_.open(trajectory_file_, std::ios::binary | std::ios::app);
         } else {
+            // New (O_EXCL | O_NOFOLLOW), a killed run's leftover replaced, then opened by name.
+            const int fd = create_new_file(trajectory_file_);
+            if (fd < 0)
+                throw error("cannot write " + printable(trajectory_file_.string()) + ": " + std::strerror(errno));
+            ::close(fd);
             trajectory_.open(trajectory_file_, std::ios::binary | std::ios::trunc);
             trajectory_ << trajectory_header;
         }
@@ -408,6 +422,21 @@ free_space free_space_of(const fs::path& folder) {
     return {.known = true, .device = std::uint64_t(st.st_dev), .available = double(space.available)};
 }
 
+// A checkpoint's trajectory is written in place (checkpointed_method): one
+// that is a symlink is refused before any method runs, so that nothing is
+// written through it and nothing computed is lost to the refusal.
+void check_no_planted_symlinks(const scene& s, const run_plan& plan) {
+    if (!s.checkpoint.every_steps || !s.output.writes_trajectory()) return;
+    for (const planned_run& r : plan.runs) {
+        const fs::path file = checkpoint_trajectory_file(s, *r.method);
+        std::error_code ec;
+        if (fs::is_symlink(file, ec))
+            throw error(printable(s.source) + ": checkpoint trajectory " + printable(file.string()) +
+                        " is a symlink; expected a file this program made there (or none): it writes no file "
+                        "through a symlink; remove it");
+    }
+}
+
 void run_scene(const scene& s, bool json, std::ostream& out, double max_steps, bool resume) {
     const runnable_system p = system_of(s);
     run_plan plan = plan_runs(s, p, sweep_use::first);
@@ -424,6 +453,7 @@ void run_scene(const scene& s, bool json, std::ostream& out, double max_steps, b
         throw scene_error(printable(s.source) + ": --resume, but the scene has no checkpoint = {every_steps = N, file = \"...\"}");
     check_disk_use(s, disk_use_of(s, plan, p), free_space_of,
                    resume && s.checkpoint.every_steps ? written_before(s, plan) : 0);
+    check_no_planted_symlinks(s, plan);
     const reference_state ref = reference_for_run(s, p, plan, max_steps);
     // Files, when the scene asks for any, are staged and moved into place together.
     std::optional<output_set> outputs;

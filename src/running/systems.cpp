@@ -153,6 +153,18 @@ runnable_system make_system(const std::string& system, const parameter_values& g
     if (entry->kinetic_not_quadratic) p.form.quadratic_kinetic = false;
     // What the registry's values add to the type's answers (V < 0, T quadratic)
     // is in the form that runnable_system::run asks before the method runs.
+    // A default start the parameters make impossible (charged_uniform's
+    // speed above a speed_of_light given below it): named with the parameters
+    // given, before anything reads it as an energy of NaN.
+    if (q0.empty() && !std::all_of(p.x0.begin(), p.x0.end(), [](double x) { return std::isfinite(x); })) {
+        std::string values, state;
+        for (const auto& [name, value] : given) values += (values.empty() ? "" : ", ") + name + " = " + shortest(value);
+        for (double x : p.x0) state += (state.empty() ? "" : ", ") + shortest(x);
+        throw invalid_argument(where + ": " + system + "'s default start is not finite at the parameters given (" +
+                               (values.empty() ? "none" : values) + "): x0 = (" + state +
+                               "); expected parameters it can start from (`sympl systems` describes the start) or an "
+                               "[initial] state");
+    }
     if (!q0.empty()) {  // the scene's own initial state: the exact solution no longer applies, unless it is x0
         if (q0.size() != p.degrees_of_freedom || p0.size() != q0.size())
             throw invalid_argument(where + ": initial q has " + std::to_string(q0.size()) + " and p " +

@@ -115,7 +115,10 @@ TEST_CASE("output_set: only this program's own leftovers are removed, and no sym
     fs::remove_all(other);
     fs::create_directories(other);
     fs::create_symlink(dir / "target.txt", other / ".sympl.lock");
-    CHECK_THROWS_AS(output_set{other}, sympl::error);
+    const std::string refusal = (other / ".sympl.lock").string() +
+                                " is a symlink; expected the lock file this program makes there (or none): it writes "
+                                "no file through a symlink; remove it";
+    CHECK_THROWS_WITH_AS(output_set{other}, refusal.c_str(), sympl::error);
     CHECK((std::stringstream() << std::ifstream(dir / "target.txt").rdbuf()).str() == "a user's file a symlink points to");
     // A temporary planted as a symlink where an atomic_file would write: refused, the target untouched.
     fs::create_symlink(dir / "target.txt", temporary_for(dir / "out.csv", true));

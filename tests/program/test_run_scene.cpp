@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -206,6 +207,36 @@ TEST_CASE("run: the trajectory of a run that blows up ends with a line that says
     std::string line, last;
     while (std::getline(in, line)) last = line;
     CHECK(last.rfind("# truncated: the run diverged", 0) == 0);
+    fs::remove_all(dir);
+}
+
+TEST_CASE("run: a checkpoint's trajectory is never written through a symlink planted in its place") {
+    const fs::path dir = scratch_directory("sympl_test_run_planted");
+    fs::remove_all(dir);
+    fs::create_directories(dir / "state");
+    {
+        std::ofstream(dir / "victim.txt") << "the user's file\n";
+    }
+    fs::create_symlink(dir / "victim.txt", dir / "state" / "run.leapfrog_kdk.trajectory");
+    const scene s = parse_scene("name = \"run\"\nsystem = \"harmonic_oscillator\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.01\n"
+                                "t_end = 10\ncheckpoint = {every_steps = 100, file = \"" +
+                                    (dir / "state" / "run").string() + "\"}\n[output]\ntrajectory_every = 10\n"
+                                    "directory = \"" + (dir / "out").string() + "\"\n",
+                                "planted.toml");
+    std::ostringstream out;
+    const std::string refusal = "planted.toml: checkpoint trajectory " +
+                                (dir / "state" / "run.leapfrog_kdk.trajectory").string() +
+                                " is a symlink; expected a file this program made there (or none)";
+    CHECK_THROWS_WITH_AS(run_scene(s, false, out), doctest::Contains(refusal.c_str()), std::exception);
+    std::ifstream victim(dir / "victim.txt");
+    std::string text((std::istreambuf_iterator<char>(victim)), std::istreambuf_iterator<char>());
+    CHECK(text == "the user's file\n");
+    CHECK_FALSE(fs::exists(dir / "out"));  // refused before anything ran
+    // Without it the run writes its own file there, and removes it when complete.
+    fs::remove(dir / "state" / "run.leapfrog_kdk.trajectory");
+    run_scene(s, false, out);
+    CHECK(fs::exists(dir / "out" / "run_leapfrog_kdk_trajectory.csv"));
+    CHECK(fs::is_empty(dir / "state"));
     fs::remove_all(dir);
 }
 

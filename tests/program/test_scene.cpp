@@ -305,6 +305,25 @@ TEST_CASE("scene: an initial state of infinite energy is refused, not reported a
     CHECK(error_of_initial("kepler", "{q = [1, 0], p = [0, 1]}") == "accepted");
 }
 
+TEST_CASE("scene: a default start the parameters make impossible is refused naming them") {
+    // charged_uniform starts at |v0| = sqrt(1.01): below it, a speed of light leaves no momentum for it.
+    const std::string head = "system = \"charged_uniform\"\nparameters = {speed_of_light = 0.5}\n"
+                             "methods = [\"boris\"]\ndt = 0.1\nt_end = 1\n";
+    std::string said;
+    try {
+        system_of(parse_scene(head, "c.toml"));
+    } catch (const std::exception& e) {
+        said = e.what();
+    }
+    // The NaN's sign is the processor's: not part of the message's promise.
+    CHECK(said.starts_with("c.toml: charged_uniform's default start is not finite at the parameters given "
+                           "(speed_of_light = 0.5): x0 = (1, 0, 0, 0, "));
+    CHECK(said.ends_with("nan); expected parameters it can start from (`sympl systems` describes the start) or an "
+                         "[initial] state"));
+    // Its own start, at rest in the field's gauge (p = e A(q)), runs at that speed of light.
+    CHECK_NOTHROW(system_of(parse_scene(head + "initial = {q = [1, 0, 0], p = [0, 0.5, 0]}\n", "c.toml")));
+}
+
 TEST_CASE("scene: a checkpoint table for any method kind, a bad interval refused where it is written") {
     const std::string head = "system = \"kepler\"\ndt = 0.1\nt_end = 1\ncheckpoint = {every_steps = 100, file = \"c\"}\n";
     const scene s = parse_scene(head + "methods = [\"leapfrog_kdk\", \"compensated(yoshida_6)\", \"rk4\"]\n", "c.toml");
