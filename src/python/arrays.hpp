@@ -1,13 +1,15 @@
 #pragma once
 // numpy arrays and Python sequences as the module's C++ sees them: a vector
-// as a 1-d array, a sequence as a vector (named in the error when it is not
-// one), and the CSV rows a run wrote as a 2-d array.
+// as a 1-d array, rows of numbers as a 2-d array that owns them, a sequence
+// as a vector (named in the error when it is not one), and the CSV rows a
+// run wrote (its dense output) as a 2-d array.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
 #include <algorithm>
 #include <cstdlib>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <sympl/core/error.hpp>
@@ -20,6 +22,16 @@ inline py::array_t<double> array_of(const std::vector<double>& v) {
     py::array_t<double> a(py::ssize_t(v.size()));
     std::copy(v.begin(), v.end(), a.mutable_data());
     return a;
+}
+
+// Rows of `columns` numbers as a 2-d array that owns them: no copy.
+inline py::array_t<double> array_of(std::vector<double>&& v, std::size_t columns) {
+    auto* held = new std::vector<double>(std::move(v));
+    const py::capsule owner(held, [](void* p) { delete static_cast<std::vector<double>*>(p); });
+    const std::size_t rows = columns ? held->size() / columns : 0;
+    return py::array_t<double>({py::ssize_t(rows), py::ssize_t(columns)},
+                               {py::ssize_t(columns * sizeof(double)), py::ssize_t(sizeof(double))}, held->data(),
+                               owner);
 }
 
 inline std::vector<double> vector_of(const py::handle& h, const char* what) {

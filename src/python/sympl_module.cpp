@@ -103,7 +103,17 @@ system from_formulas(const std::string& T, const std::string& V, const std::stri
         throw invalid_argument(e.key + (e.column ? ", column " + std::to_string(e.column) : std::string()) + ": " +
                                e.what());
     }
-    return system(name, {}, py::none(), py::none());
+    system s(name, {}, py::none(), py::none());
+    std::string texts = "T=" + T + "\nV=" + V + "\nH=" + H + "\nperiod=" + period;
+    for (const auto& [k, v] : parameters) texts += "\n" + k + "=" + shortest(v);
+    for (const auto& list : {coordinates, momenta, exact_q, exact_p}) {
+        texts += "\n[";
+        for (const auto& text : list) texts += text + ";";
+    }
+    for (double v : t.q0) texts += "\n" + shortest(v);
+    for (double v : t.p0) texts += "\n" + shortest(v);
+    s.add_to_identity(texts);
+    return s;
 }
 
 py::list systems_list() {
@@ -204,8 +214,8 @@ toml::table toml_of(const py::dict& d, const std::string& where, int depth) {
 
 // The report over scene files (none: the built-in set), written to `out` as
 // the program writes it; its work-precision rows returned as columns, and
-// with plots the figures of plot_report, defined in `self` (this module, as
-// it was loaded: under whatever name, never imported again by one).
+// with plots the figures of plot_report, defined in `self` (this module,
+// under the name it was loaded as).
 py::dict report(const py::module_& self, const py::list& scene_list, const std::string& out, bool quick, bool plots,
                 int threads) {
     // Files by path, dicts as their TOML text (the program's reader checks both alike).
@@ -316,11 +326,12 @@ PYBIND11_MODULE(sympl, m) {
              "rows of q then p")
         .def("events", &sympl::app::python::system::events, py::arg("method"), py::arg("t_end"), py::arg("dt"),
              py::arg("events"), py::arg("t0") = 0.0, py::arg("x0") = py::none(), py::arg("tolerance") = 1e-8,
-             "A splitting table's or an RKN pair's run with events, as SciPy's solve_ivp takes them: callables "
-             "g(t, q, p), with optional attributes terminal (stop at the first crossing) and direction (> 0 rising, "
-             "< 0 falling); each crossing located by Brent's method on the cubic Hermite interpolant of the step, "
-             "or on a controlled pair's own interpolation (dprkn8_controlled: steps to `tolerance`, dt its first "
-             "trial step). A dict: t_events, q_events, p_events (a list per event), stopped, t and final_state "
+             "A run with events by any method but Wisdom-Holman's and the charged pushers, as SciPy's solve_ivp "
+             "takes them: callables g(t, q, p), with optional attributes terminal (stop at the first crossing) and "
+             "direction (> 0 rising, < 0 falling); each crossing located by Brent's method on the cubic Hermite "
+             "interpolant of the method's own step, or on a controlled RKN pair's own interpolation "
+             "(dprkn8_controlled: steps to `tolerance`, dt its first trial step; Odeint's controlled steppers: "
+             "`tolerance`, dt unused). A dict: t_events, q_events, p_events (a list per event), stopped, t and final_state "
              "(where the run ended)")
         .def("ensemble", &sympl::app::python::system::ensemble, py::arg("starts"), py::arg("method"), py::arg("t_end"),
              py::arg("dt"), py::arg("t0") = 0.0, py::arg("sample_every") = 10, py::arg("megno") = false,
@@ -347,10 +358,12 @@ PYBIND11_MODULE(sympl, m) {
     m.def("check_table", &checked_table, py::arg("kick"), py::arg("drift"), py::arg("convention") = "kick-first",
           "The order conditions and the measured order of coefficients, as `sympl check-table --json`");
     sympl::app::python::add_figures(m);
-    // The module by a borrowed handle: it outlives its own functions.
+    // The module by the name it was loaded under (`sympl`, or `pkg.sympl`
+    // inside a user's package), looked up when the figures are drawn.
     m.def("report",
-          [self = py::handle(m)](const py::list& scenes, const std::string& out, bool quick, bool plots, int threads) {
-              return report(py::reinterpret_borrow<py::module_>(self), scenes, out, quick, plots, threads);
+          [self = m.attr("__name__").cast<std::string>()](const py::list& scenes, const std::string& out, bool quick,
+                                                          bool plots, int threads) {
+              return report(py::module_::import(self.c_str()), scenes, out, quick, plots, threads);
           },
           py::arg("scenes") = py::list(), py::arg("out") = "sympl-report",
           py::arg("quick") = true, py::arg("plots") = false, py::arg("threads") = 0,

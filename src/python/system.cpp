@@ -80,7 +80,19 @@ py::dict system::run(const std::string& method, double t_end, double dt, double 
         rq.output_order = order;
         rq.trajectory = &trajectory;
     }
-    if (trajectory_every) rq.trajectory = &trajectory;
+    // Rows of every trajectory_every-th step as numbers, straight from the
+    // run's own states (no text); dense rows at `times` come as the
+    // program writes them.
+    std::vector<double> rows;
+    std::size_t step = 0;
+    if (trajectory_every) {
+        rq.trajectory_every = 0;
+        rq.each_step = [&](double t, const std::vector<double>& state) {
+            if (step++ % trajectory_every != 0) return;
+            rows.push_back(t);
+            rows.insert(rows.end(), state.begin(), state.end());
+        };
+    }
     std::optional<checkpoint_record> from;
     if (!checkpoint.empty() || checkpoint_every || resume)
         checkpointed(m, method, rq, t0, t_end, x, checkpoint, checkpoint_every, resume, from);
@@ -96,7 +108,8 @@ py::dict system::run(const std::string& method, double t_end, double dt, double 
     double* row = s.mutable_data();
     for (const auto& [t, e] : r.energy_series) *row++ = t, *row++ = e;
     out["energy_series"] = s;
-    out["trajectory"] = rows_of(trajectory.str(), 1 + sys_.x0.size());
+    out["trajectory"] = trajectory_every ? array_of(std::move(rows), 1 + sys_.x0.size())
+                                         : rows_of(trajectory.str(), 1 + sys_.x0.size());
     return out;
 }
 

@@ -17,7 +17,7 @@ namespace {
 // relative; dt its first trial step) on the pair's own interpolation. Any
 // other kind the generic path runs (compensated and extrapolated tables,
 // processed, LogH with dt its fictitious step, classic steppers, Gauss, Tao,
-// Odeint at `tolerance`) is run by `run`, observed at every step in physical
+// semiexplicit, Odeint at `tolerance`) is run by `run`, observed at every step in physical
 // time (run_request::each_step), its events located on the cubic Hermite
 // interpolant between those steps. Each g is called on the stacked state,
 // which costs a copy a call; g is the user's (a Python callable, say),
@@ -66,7 +66,8 @@ events_function events_of(erased_separable sys, run_function run) {
         if (!generic_kinds().has(m.kind))
             throw invalid_argument("events method '" + printable(m.name) + "' (" + entry_of(m.kind).label +
                                    "): its runs are not offered with events; expected a method of another kind (a "
-                                   "table, an RKN pair, LogH, Gauss, Tao, a classic or an Odeint stepper)");
+                                   "table, a processed method, an RKN pair, LogH, Gauss, Tao, semiexplicit, a "
+                                   "classic or an Odeint stepper)");
         step_interpolant<erased_separable, S> dense(sys, hermite_order::cubic);
         run_summary summary;  // steps observed so far
         const auto drive = [&](auto& observer) {
@@ -74,6 +75,7 @@ events_function events_of(erased_separable sys, run_function run) {
             rq.dt = dt;
             rq.tolerance = tolerance;
             rq.timing_repeats = 0;
+            rq.energy = true;  // blow-up told as run() tells it (relative energy error > divergence_limit)
             bool first = true;
             S y = x;
             rq.each_step = [&](double t, const std::vector<double>& state) {

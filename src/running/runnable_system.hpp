@@ -128,8 +128,9 @@ struct event_outcome {
     double t = 0;           // where the run ended (t_end, or the stop event's time)
     std::vector<double> x;  // its state there
 };
-// A method's run with events: a plain splitting table or an RKN pair at
-// steps of dt, or a pair controlled to `tolerance` from a first step dt.
+// A method's run with events: any kind of the generic path (generic_path.cpp
+// says how each is located) at steps of dt (LogH: its fictitious step), or
+// controlled to `tolerance` (an RKN pair from a first step dt).
 using events_function =
     std::function<event_outcome(const method_spec&, double dt, double tolerance, double t0, double t_end,
                                 const std::vector<double>& x0, const std::vector<event_spec>&)>;
@@ -163,9 +164,9 @@ struct runnable_system {
     // Upward crossings of q1 = 0 (a Poincare section) of `steps` steps of dt
     // from x0, as stacked states (separable Hamiltonians only).
     section_function section;
-    // The events of a splitting table's run of fixed steps dt from x0 at t0 to
-    // t_end, located on the cubic Hermite interpolant (separable Hamiltonians
-    // only): on the generic path, compiled once for every system.
+    // The events of a method's run from x0 at t0 to t_end (events_function),
+    // separable Hamiltonians only: on the generic path, compiled once for
+    // every system.
     events_function events;
     // A reference at t_end with step dt: Sofroniou-Spaletta 10 in long double
     // (a separable H), Gauss-Legendre 6 in long double (any other H), RK4.
