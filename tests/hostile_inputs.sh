@@ -53,10 +53,11 @@ run_case() {
     [ "$size" -le 65536 ] || fail "$name" "$size bytes of messages (over 64 KiB)"
     [ "$longest" -le 4096 ] || fail "$name" "a line of $longest characters (over 4 KiB)"
     # Every byte printable or a newline (UTF-8 above 0x7f allowed, C1 controls not).
-    if LC_ALL=C grep -q -P '[\x00-\x09\x0b-\x1f\x7f]' "err.$cases"; then
+    # -a: grep would take a file with a NUL for binary and not match in it.
+    if LC_ALL=C grep -a -q -P '[\x00-\x09\x0b-\x1f\x7f]' "err.$cases"; then
         fail "$name" "a control character in the messages"
     fi
-    if LC_ALL=C grep -q -P '\xc2[\x80-\x9f]' "err.$cases"; then
+    if LC_ALL=C grep -a -q -P '\xc2[\x80-\x9f]' "err.$cases"; then
         fail "$name" "a C1 control character in the messages"
     fi
 }
@@ -110,6 +111,18 @@ states = "zero_states"
 TOML
 run_case states_file_naming_dev_zero 2 "zero_states" 60 ensemble states_zero.toml
 
+ln -s /dev/zero zero_elements
+scene elements_zero.toml <<'TOML'
+system = "outer_solar_system"
+methods = ["wh(saba_2)"]
+dt = 100
+t_end = 2000
+[test_particles]
+elements = "zero_elements"
+indicator = "megno"
+TOML
+run_case elements_file_naming_dev_zero 2 "zero_elements: the orbital elements file is a character device" 60 run elements_zero.toml
+
 # --- Files of the wrong kind. -------------------------------------------------
 scene ok.toml <<'TOML'
 name = "ok"
@@ -121,6 +134,19 @@ checkpoint = {every_steps = 100, file = "state/ok"}
 TOML
 mkdir -p state/ok.leapfrog_kdk
 run_case checkpoint_that_is_a_directory 2 "state/ok" 60 run ok.toml --resume
+rm -rf state
+scene belt_checkpointed.toml <<'TOML'
+system = "outer_solar_system"
+methods = ["wh(saba_2)"]
+dt = 100
+t_end = 2000
+checkpoint = {every_steps = 100, file = "state/belt"}
+[test_particles]
+grid = {a = {from = 6.0, to = 9.0, count = 4}, e = {from = 0.0, to = 0.2, count = 2}}
+indicator = "megno"
+TOML
+mkdir -p state/belt.test-particles-rank-0
+run_case rank_file_that_is_a_directory 2 "state/belt.test-particles-rank-0" 60 run belt_checkpointed.toml --resume
 rm -rf state
 
 # --- The user's files: never removed, never written through a symlink. -------

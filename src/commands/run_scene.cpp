@@ -179,6 +179,7 @@ public:
                 r.trajectory_bytes = std::uint64_t(trajectory_.tellp());
             }
             write_checkpoint(file_, r);
+            saved_ = true;
         };
     }
 
@@ -190,10 +191,13 @@ public:
         out << in.rdbuf();
     }
 
+    // The run is complete: its checkpoint and trajectory go, and only what
+    // this run wrote or resumed from (a regular file, never a symlink).
     void remove() {
         std::error_code ec;
-        fs::remove(file_, ec);
-        fs::remove(trajectory_file_, ec);
+        const auto ours = [&](const fs::path& f) { return fs::symlink_status(f, ec).type() == fs::file_type::regular; };
+        if ((saved_ || from_) && ours(file_)) fs::remove(file_, ec);
+        if (with_trajectory_ && ours(trajectory_file_)) fs::remove(trajectory_file_, ec);
     }
 
     // FILE.<method>.sympl-part-PID of a process killed while writing a
@@ -217,6 +221,7 @@ private:
     double dt_;
     fs::path file_, trajectory_file_;
     bool with_trajectory_;
+    bool saved_ = false;  // a checkpoint of this run was written
     std::optional<checkpoint_record> from_;
     std::ofstream trajectory_;
 };

@@ -22,6 +22,7 @@
 #include <tuple>
 
 #include <sympl/parallel/ensemble.hpp>
+#include <sympl/planetary/energy.hpp>
 #include <sympl/planetary/test_particles/encounters.hpp>
 #include <sympl/planetary/wisdom_holman_stepper.hpp>
 
@@ -170,6 +171,15 @@ void run_piece(const planets& p, const std::vector<orbital_elements>& orbits, st
         throw scene_error("the planets' state became non-finite within " + std::to_string(p.steps) +
                           " steps of dt = " + shortest(p.dt) + " from t = " + shortest(p.t0) +
                           "; expected a bound planetary system (check the scene's initial state and dt)");
+    // Nor a map over planets the run did not keep (two planets started close
+    // fly apart at 1e21 AU/day, the particles "kept"): their energy error at
+    // the end is held to what `sympl run` flags as an error of order one.
+    const double e0 = nbody_energy(p.mass, p.G, p.x0), e1 = nbody_energy(p.mass, p.G, x);
+    if (const double error = std::fabs(e1 - e0) / std::fabs(e0); !(error < order_one_error))
+        throw scene_error("the planets' energy changed by " + format_number(error, 3) + " of itself within " +
+                          std::to_string(p.steps) + " steps of dt = " + shortest(p.dt) + " from t = " +
+                          shortest(p.t0) + "; expected below " + shortest(order_one_error) +
+                          ", a planetary system the method keeps (check the scene's initial state and dt)");
     const auto& kept = wh.test_particles();
     const std::vector<double> megno = p.megno ? wh.test_particle_megno() : std::vector<double>(kept.size(), NAN);
     const double gm = p.G * p.mass[0];
@@ -369,6 +379,9 @@ std::vector<test_particle_row> run_test_particles(const scene& s, const std::vec
     if (s.checkpoint.every_steps) {
         saves.on = true;
         saves.mine = row_checkpoint_file(s.checkpoint.file, checkpoint_kind, ranks.rank);
+        // Made before any piece runs, as run and ensemble make theirs: a
+        // folder that does not exist would otherwise fail the first save.
+        if (saves.mine.has_parent_path()) std::filesystem::create_directories(saves.mine.parent_path());
         saves.scene_hash = s.text_hash;
         saves.every = double(s.checkpoint.every_steps);
     }

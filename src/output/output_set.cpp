@@ -3,6 +3,7 @@
 
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -49,7 +50,8 @@ output_set::output_set(fs::path directory) : directory_(std::move(directory)) {
     const fs::path lock = directory_ / ".sympl.lock";
     // Never through a symlink: a planted .sympl.lock -> file would be truncated.
     lock_fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644);
-    if (lock_fd_ < 0 && errno == ELOOP)
+    struct stat st {};
+    if (lock_fd_ < 0 && errno == ELOOP && ::lstat(lock.c_str(), &st) == 0 && S_ISLNK(st.st_mode))
         throw error(printable(lock.string()) + " is a symlink; expected the lock file this program makes there (or "
                     "none): it writes no file through a symlink; remove it");
     if (lock_fd_ < 0) throw error("cannot open " + printable(lock.string()) + ": " + std::strerror(errno));

@@ -25,15 +25,28 @@ fs::path directory_of(const std::string& file) {
     const fs::path f(file);
     return f.has_parent_path() ? f.parent_path() : fs::path(".");
 }
-// The finished files of `kind` (not a writer's temporary FILE.sympl-part-PID).
+// Whether `name` is PREFIX<rank>, or with_temporaries and a writer's
+// temporary of one (PREFIX<rank>.sympl-part-PID): digits only after the
+// prefix, so that a user's `FILE.kind-rank-0.bak` is never one of ours.
+bool rank_file_name(const std::string& name, const std::string& prefix, bool with_temporaries) {
+    if (name.rfind(prefix, 0) != 0) return false;
+    std::string rank = name.substr(prefix.size());
+    if (is_temporary_name(name)) {
+        if (!with_temporaries) return false;
+        rank = rank.substr(0, rank.rfind(".sympl-part-"));
+    }
+    return !rank.empty() && rank.find_first_not_of("0123456789") == std::string::npos;
+}
+
+// The finished files of `kind` (not a writer's temporary FILE.sympl-part-PID)
+// by name: a reader refuses one that is not a regular file, removal skips it.
 std::vector<fs::path> files_of(const std::string& file, const std::string& kind, bool with_temporaries) {
     std::vector<fs::path> found;
     std::error_code ec;
     const std::string prefix = prefix_of(file, kind);
     for (const auto& entry : fs::directory_iterator(directory_of(file), ec)) {
         const std::string name = entry.path().filename().string();
-        if (name.rfind(prefix, 0) == 0 && (with_temporaries || !is_temporary_name(name)))
-            found.push_back(entry.path());
+        if (rank_file_name(name, prefix, with_temporaries)) found.push_back(entry.path());
     }
     return found;
 }
@@ -74,7 +87,8 @@ std::vector<std::pair<fs::path, std::string>> read_row_checkpoints(const std::st
 
 void remove_row_checkpoints(const std::string& file, const std::string& kind) {
     std::error_code ec;
-    for (const fs::path& p : files_of(file, kind, true)) fs::remove(p, ec);
+    for (const fs::path& p : files_of(file, kind, true))
+        if (fs::symlink_status(p, ec).type() == fs::file_type::regular) fs::remove(p, ec);
 }
 
 void refuse_row_checkpoint(const std::string& kind, const fs::path& file, const std::string& why) {

@@ -159,11 +159,12 @@ runnable_system make_system(const std::string& system, const parameter_values& g
     if (q0.empty() && !std::all_of(p.x0.begin(), p.x0.end(), [](double x) { return std::isfinite(x); })) {
         std::string values, state;
         for (const auto& [name, value] : given) values += (values.empty() ? "" : ", ") + name + " = " + shortest(value);
-        for (double x : p.x0) state += (state.empty() ? "" : ", ") + shortest(x);
+        for (std::size_t i = 0; i < p.x0.size() && i < 12; ++i) state += (i ? ", " : "") + shortest(p.x0[i]);
+        if (p.x0.size() > 12) state += ", ... (" + std::to_string(p.x0.size()) + " numbers)";
         throw invalid_argument(where + ": " + system + "'s default start is not finite at the parameters given (" +
                                (values.empty() ? "none" : values) + "): x0 = (" + state +
-                               "); expected parameters it can start from (`sympl systems` describes the start) or an "
-                               "[initial] state");
+                               "); expected parameters it can start from (`sympl systems` describes the start) or a "
+                               "start of one's own ([initial] in a scene, q0 and p0 in Python)");
     }
     if (!q0.empty()) {  // the scene's own initial state: the exact solution no longer applies, unless it is x0
         if (q0.size() != p.degrees_of_freedom || p0.size() != q0.size())

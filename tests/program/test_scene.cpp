@@ -318,8 +318,8 @@ TEST_CASE("scene: a default start the parameters make impossible is refused nami
     // The NaN's sign is the processor's: not part of the message's promise.
     CHECK(said.starts_with("c.toml: charged_uniform's default start is not finite at the parameters given "
                            "(speed_of_light = 0.5): x0 = (1, 0, 0, 0, "));
-    CHECK(said.ends_with("nan); expected parameters it can start from (`sympl systems` describes the start) or an "
-                         "[initial] state"));
+    CHECK(said.ends_with("nan); expected parameters it can start from (`sympl systems` describes the start) or a "
+                         "start of one's own ([initial] in a scene, q0 and p0 in Python)"));
     // Its own start, at rest in the field's gauge (p = e A(q)), runs at that speed of light.
     CHECK_NOTHROW(system_of(parse_scene(head + "initial = {q = [1, 0, 0], p = [0, 0.5, 0]}\n", "c.toml")));
 }

@@ -15,6 +15,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "reading/scene.hpp"
 #include "scratch_directory.hpp"
@@ -330,6 +331,65 @@ TEST_CASE("test particles belt: planets not on bound orbits about the star are r
                          doctest::Contains(" AU/day, at or past the escape speed 0.0"), sympl::error);
     CHECK_FALSE(fs::exists(dir / "test_particles.csv"));
     // The scene's own planets pass (the belt runs in the tests above).
+    fs::remove_all(dir);
+}
+
+TEST_CASE("test particles belt: planets the run does not keep are an error with the figures, nothing written") {
+    // Saturn started 1e-13 AU from Jupiter with Jupiter's velocity: each
+    // planet's orbit about the star is bound and outside it (the up-front
+    // checks pass), the first kick flings them apart; the particles would be
+    // "kept" by a run whose planets' energy changed by all of itself.
+    const runnable_system planets = system_of(parse_scene(belt, "belt.toml"));
+    const std::size_t n = planets.x0.size() / 2;
+    std::vector<double> q(planets.x0.begin(), planets.x0.begin() + std::ptrdiff_t(n)),
+        p(planets.x0.begin() + std::ptrdiff_t(n), planets.x0.end());
+    const double speed_ratio = std::hypot(p[6], p[7], p[8]) / std::hypot(p[3], p[4], p[5]);
+    for (std::size_t c = 0; c < 3; ++c) {
+        q[6 + c] = q[3 + c];
+        p[6 + c] = p[3 + c] * speed_ratio;
+    }
+    q[6] += 1e-13;
+    std::string initial = "[initial]\nq = [", momenta = "p = [";
+    for (std::size_t i = 0; i < n; ++i) {
+        initial += (i ? ", " : "") + shortest(q[i]);
+        momenta += (i ? ", " : "") + shortest(p[i]);
+    }
+    const scene s = parse_scene(replaced(belt, "t_end = 160000", "t_end = 2000") + initial + "]\n" + momenta + "]\n",
+                                "close.toml");
+    const fs::path dir = scratch_directory("sympl_test_belt_close_planets");
+    fs::remove_all(dir);
+    std::ostringstream said;
+    CHECK_THROWS_WITH_AS(test_particles_command(s, dir, 1, default_max_steps, said),
+                         doctest::Contains("the planets' energy changed by "), sympl::error);
+    CHECK_THROWS_WITH_AS(test_particles_command(s, dir, 1, default_max_steps, said),
+                         doctest::Contains(" within 100 steps of dt = 20 from t = 0; expected below 0.1, a planetary "
+                                           "system the method keeps (check the scene's initial state and dt)"),
+                         sympl::error);
+    CHECK_FALSE(fs::exists(dir / "test_particles.csv"));
+    fs::remove_all(dir);
+}
+
+TEST_CASE("test particles belt: a checkpoint's folder that does not exist yet is made before any piece runs") {
+    const fs::path dir = scratch_directory("sympl_test_belt_new_folder");
+    fs::remove_all(dir);
+    const std::string file = (dir / "not" / "yet" / "belt").string();
+    const scene s = parse_scene(replaced(replaced(belt, "t_end = 160000", "t_end = 2000"), "dt = 20\n",
+                                         "dt = 20\ncheckpoint = {every_steps = 1, file = \"" + file + "\"}\n"),
+                                "belt.toml");
+    const std::vector<sympl::orbital_elements> orbits = test_particle_orbits(s);
+    const auto rows = run_test_particles(s, orbits, 1, default_max_steps, exchange{}, false, 16);
+    CHECK(rows.size() == orbits.size());
+    CHECK(fs::exists(dir / "not" / "yet" / "belt.test-particles-rank-0"));
+    // Removing them removes this program's files only: not a user's copy
+    // named after one, nor a symlink of a rank file's name (or its target).
+    std::ofstream(dir / "not" / "yet" / "belt.test-particles-rank-0.bak") << "a user's copy\n";
+    std::ofstream(dir / "target.txt") << "a user's file\n";
+    fs::create_symlink(dir / "target.txt", dir / "not" / "yet" / "belt.test-particles-rank-9");
+    remove_test_particle_checkpoints(s);
+    CHECK_FALSE(fs::exists(dir / "not" / "yet" / "belt.test-particles-rank-0"));
+    CHECK(fs::exists(dir / "not" / "yet" / "belt.test-particles-rank-0.bak"));
+    CHECK(fs::is_symlink(dir / "not" / "yet" / "belt.test-particles-rank-9"));
+    CHECK(fs::exists(dir / "target.txt"));
     fs::remove_all(dir);
 }
 
