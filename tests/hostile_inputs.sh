@@ -169,6 +169,14 @@ before=$(md5sum mine/.notes.part-2024 victim_lock victim_trajectory)
 run_case planted_lock_symlink 2 "sympl.lock is a symlink; expected the lock file" 60 run here.toml
 rm mine/.sympl.lock
 run_case output_beside_the_users_files 0 "" 60 run here.toml
+# The output directory the current one: the user's files there stay too.
+mkdir -p dot && cd dot || exit 1
+echo "the user's notes" > .notes.part-2024
+sed 's/directory = "mine"/directory = "."/' ../here.toml > here.toml
+run_case output_into_the_current_directory 0 "" 60 run here.toml
+[ "$(cat .notes.part-2024)" = "the user's notes" ] || fail output_into_the_current_directory ".notes.part-2024 changed"
+[ -f here_leapfrog_kdk_trajectory.csv ] || fail output_into_the_current_directory "no trajectory written"
+cd .. || exit 1
 mkdir -p tstate
 ln -s ../victim_trajectory tstate/traj.leapfrog_kdk.trajectory
 scene traj.toml <<'TOML'

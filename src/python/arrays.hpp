@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -26,8 +27,10 @@ inline py::array_t<double> array_of(const std::vector<double>& v) {
 
 // Rows of `columns` numbers as a 2-d array that owns them: no copy.
 inline py::array_t<double> array_of(std::vector<double>&& v, std::size_t columns) {
-    auto* held = new std::vector<double>(std::move(v));
+    auto owned = std::make_unique<std::vector<double>>(std::move(v));
+    std::vector<double>* held = owned.get();
     const py::capsule owner(held, [](void* p) { delete static_cast<std::vector<double>*>(p); });
+    owned.release();  // the capsule owns it now
     const std::size_t rows = columns ? held->size() / columns : 0;
     return py::array_t<double>({py::ssize_t(rows), py::ssize_t(columns)},
                                {py::ssize_t(columns * sizeof(double)), py::ssize_t(sizeof(double))}, held->data(),

@@ -103,17 +103,7 @@ system from_formulas(const std::string& T, const std::string& V, const std::stri
         throw invalid_argument(e.key + (e.column ? ", column " + std::to_string(e.column) : std::string()) + ": " +
                                e.what());
     }
-    system s(name, {}, py::none(), py::none());
-    std::string texts = "T=" + T + "\nV=" + V + "\nH=" + H + "\nperiod=" + period;
-    for (const auto& [k, v] : parameters) texts += "\n" + k + "=" + shortest(v);
-    for (const auto& list : {coordinates, momenta, exact_q, exact_p}) {
-        texts += "\n[";
-        for (const auto& text : list) texts += text + ";";
-    }
-    for (double v : t.q0) texts += "\n" + shortest(v);
-    for (double v : t.p0) texts += "\n" + shortest(v);
-    s.add_to_identity(texts);
-    return s;
+    return system(name, {}, py::none(), py::none());
 }
 
 py::list systems_list() {

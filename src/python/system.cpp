@@ -22,6 +22,9 @@ system::system(const std::string& name, const std::map<std::string, double>& par
     sys_ = make_system(name, parameters, q, p, "python");
     name_ = name;
     for (const auto& [key, value] : parameters) identity_ += key + "=" + shortest(value) + ";";
+    // A formula system's formulas, so that one defined otherwise under the
+    // same name (in another process) is another system to a checkpoint.
+    if (const std::string defined = scene_system_definition(name); !defined.empty()) identity_ += "\n" + defined;
 }
 
 double system::energy(const py::object& x) const {
@@ -138,7 +141,7 @@ void system::checkpointed(const method_spec& m, const std::string& method, run_r
         throw invalid_argument("checkpoint = '" + file + "', checkpoint_every = " + std::to_string(every) +
                                "; expected a file name and a number of steps > 0 (resume too)");
     if (const std::string why = why_not_resumable(m); !why.empty()) throw invalid_argument(why);
-    if (rq.trajectory || rq.energy_series_every)
+    if (rq.trajectory || rq.each_step || rq.energy_series_every)
         throw invalid_argument("checkpoints with trajectory_every, times or energy_every; expected checkpoints of "
                                "a run whose results are its final state and largest energy error");
     std::string identity = "python\n" + name_ + "\n" + identity_ + "\n" + shortest(t0) + "\n" + shortest(t_end) +

@@ -30,10 +30,6 @@ public:
         : sys_(callable_runnable(c, std::move(x0))), name_(std::move(name)), callables_(std::move(c)) {}
 
     const std::string& name() const { return name_; }
-    // What a checkpoint's identity adds beyond the name and parameters: a
-    // formula system's texts, so that a system redefined under the same name
-    // does not resume another's run.
-    void add_to_identity(const std::string& more) { identity_ += "\n" + more; }
     std::size_t degrees_of_freedom() const { return sys_.degrees_of_freedom; }
     py::array_t<double> x0() const { return array_of(sys_.x0); }
     double energy(const py::object& x) const;

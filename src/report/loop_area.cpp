@@ -17,6 +17,11 @@ double loop_area_error(const runnable_system& p, const method_spec& m, run_reque
     rq.trajectory = nullptr;
     rq.trajectory_every = rq.energy_series_every = 0;
     rq.output_times.clear();
+    // The loop's runs are not the method's run: none of its checkpoints
+    // (saved or resumed), progress line or per-step hook.
+    rq.checkpoint = {};
+    rq.progress = nullptr;
+    rq.each_step = nullptr;
     const std::size_t n = p.degrees_of_freedom;
     const double r = 0.05 * std::max(1.0, std::hypot(p.x0[0], p.x0[n])), pi = std::numbers::pi;
     using State = phase_space<double>;

@@ -58,6 +58,14 @@ scene_registry& scene_systems() {
 }
 }  // namespace
 
+std::string scene_system_definition(const std::string& name) {
+    scene_registry& r = scene_systems();
+    std::lock_guard lock(r.mutex);
+    for (const auto& [s, defined] : r.entries)
+        if (s.name == name) return defined;
+    return {};
+}
+
 const system_entry& add_scene_system(system_entry entry, const std::string& definition) {
     for (const auto& s : registry())
         if (s.name == entry.name)

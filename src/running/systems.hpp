@@ -99,6 +99,9 @@ const std::vector<system_entry>& systems();
 // defines it (the table's text): a second scene of the run may give the same
 // name only with the same definition. A built-in system's name is refused.
 const system_entry& add_scene_system(system_entry entry, const std::string& definition);
+// What defines a system of a scene (or of Python) found by name: its
+// definition as given to add_scene_system; empty for a built-in system.
+std::string scene_system_definition(const std::string& name);
 const system_entry* find_system(const std::string& name);
 std::vector<std::string> system_names();
 

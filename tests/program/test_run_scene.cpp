@@ -73,6 +73,22 @@ TEST_CASE("run: the loop area a scene asks for: kept by a symplectic table, lost
     CHECK_FALSE(json[0].contains("max_energy_error"));
 }
 
+TEST_CASE("run: the loop area of a checkpointed run: its loop's runs neither save nor resume the run's checkpoint") {
+    const fs::path dir = scratch_directory("sympl_test_run_area_checkpoint");
+    fs::remove_all(dir);
+    const std::string text = "system = \"pendulum\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.5\nt_end = 200\n"
+                             "checkpoint = {every_steps = 100, file = \"" + (dir / "state" / "area").string() +
+                             "\"}\n[output]\nloop_area = true\n";
+    const auto plain = run_json("system = \"pendulum\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.5\nt_end = 200\n"
+                                "[output]\nloop_area = true\n",
+                                "area.toml");
+    const auto checkpointed = run_json(text, "area.toml");
+    CHECK(checkpointed[0]["loop_area_error"] == plain[0]["loop_area_error"]);
+    CHECK(checkpointed[0]["max_energy_error"] == plain[0]["max_energy_error"]);
+    CHECK(fs::is_empty(dir / "state"));  // the complete run's checkpoint removed, no loop run's left
+    fs::remove_all(dir);
+}
+
 TEST_CASE("run: a method the system cannot run is refused before anything runs") {
     const scene two_step =
         parse_scene("system = \"pendulum\"\nmethods = [\"leapfrog_two_step\"]\ndt = 0.1\nt_end = 1\n", "two.toml");

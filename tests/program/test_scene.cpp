@@ -475,7 +475,7 @@ namespace test_program_test_scene_inputs {
 
 using namespace sympl::app;
 
-TEST_CASE("scene: the identity a checkpoint belongs to covers the states file the scene reads") {
+TEST_CASE("scene: the identity a checkpoint belongs to covers the states and elements files the scene reads") {
     const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("sympl_inputs_" + std::to_string(::getpid()));
     std::filesystem::create_directories(dir);
     {
@@ -487,6 +487,17 @@ TEST_CASE("scene: the identity a checkpoint belongs to covers the states file th
     CHECK(before == load_scene((dir / "e.toml").string()).text_hash);  // the same files, the same identity
     std::ofstream(dir / "starts.csv") << "q1,q2,p1,p2\n0,0.1,0.3,0.01\n";  // one number edited after a kill
     CHECK(load_scene((dir / "e.toml").string()).text_hash != before);
+    // The same for a test-particle map's elements file.
+    {
+        std::ofstream(dir / "m.toml") << "system = \"outer_solar_system\"\nmethods = [\"wh(saba_2)\"]\ndt = 100\n"
+                                         "t_end = 2000\n[test_particles]\nelements = \"orbits.csv\"\n"
+                                         "indicator = \"megno\"\n";
+        std::ofstream(dir / "orbits.csv") << "a,e\n6.5,0.1\n7,0\n";
+    }
+    const std::string map_before = load_scene((dir / "m.toml").string()).text_hash;
+    CHECK(map_before == load_scene((dir / "m.toml").string()).text_hash);
+    std::ofstream(dir / "orbits.csv") << "a,e\n6.5,0.1\n7,0.01\n";
+    CHECK(load_scene((dir / "m.toml").string()).text_hash != map_before);
     // The scene's text alone, as before, where it reads no file.
     const std::string text = "system = \"pendulum\"\nmethods = [\"leapfrog_kdk\"]\ndt = 0.1\nt_end = 1\n";
     std::ofstream(dir / "p.toml") << text;

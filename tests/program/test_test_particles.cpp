@@ -338,7 +338,7 @@ TEST_CASE("test particles belt: planets the run does not keep are an error with 
     // Saturn started 1e-13 AU from Jupiter with Jupiter's velocity: each
     // planet's orbit about the star is bound and outside it (the up-front
     // checks pass), the first kick flings them apart; the particles would be
-    // "kept" by a run whose planets' energy changed by all of itself.
+    // "kept" by a run whose planets' energy changed by all of its scale.
     const runnable_system planets = system_of(parse_scene(belt, "belt.toml"));
     const std::size_t n = planets.x0.size() / 2;
     std::vector<double> q(planets.x0.begin(), planets.x0.begin() + std::ptrdiff_t(n)),
