@@ -11,21 +11,62 @@ namespace sympl::app::detail {
 
 namespace {
 
+using events_state = state_of<Eigen::Dynamic>;
+
+// The events of any kind but a plain table and the RKN pairs: the method
+// run by `run` as run() runs it (compensated and extrapolated tables,
+// processed, LogH with dt its fictitious step, classic steppers, Gauss, Tao,
+// semiexplicit, Odeint at `tolerance`), observed at each of its own steps in
+// physical time (run_request::each_step), its events located on the cubic
+// Hermite interpolant between those steps; x ends where the run ended.
+event_run<events_state> events_by_run(const erased_separable& sys, const run_function& run, const method_spec& m,
+                                      double dt, double tolerance, double t0, double t_end,
+                                      const std::vector<double>& x0, events_state& x,
+                                      const std::vector<event<events_state>>& events) {
+    using S = events_state;
+    if (!generic_kinds().has(m.kind))
+        throw invalid_argument("events method '" + printable(m.name) + "' (" + entry_of(m.kind).label +
+                               "): its runs are not offered with events; expected a method of another kind (a "
+                               "table, a processed method, an RKN pair, LogH, Gauss, Tao, semiexplicit, a "
+                               "classic or an Odeint stepper)");
+    step_interpolant<erased_separable, S> dense(sys, hermite_order::cubic);
+    run_summary summary;  // steps observed so far
+    const auto drive = [&](auto& observer) {
+        run_request rq;
+        rq.dt = dt;
+        rq.tolerance = tolerance;
+        rq.timing_repeats = 0;
+        rq.energy = true;  // blow-up told as run() tells it (relative energy error > divergence_limit)
+        bool first = true;
+        S y = x;
+        rq.each_step = [&](double t, const std::vector<double>& state) {
+            y = from_stacked<S>(state);
+            if (!std::exchange(first, false)) ++summary.steps;
+            observer(std::as_const(y), t);
+        };
+        const run_result r = run(m, rq, t0, t_end, x0);
+        if (!r.stable) throw integration_error(r.failure, r.blowup_step, r.blowup_time);
+        x = from_stacked<S>(r.final_state);
+        summary.t = t_end;
+        summary.force_evaluations = r.force_evaluations;
+        return summary;
+    };
+    const auto stopped = [&](std::size_t) { return summary; };
+    return sympl::detail::locate_events<dense_summary>(dense, x, events, event_options{}, "events", drive, stopped);
+}
+
 // A method's events on the generic path (drivers/events.hpp). A plain
 // splitting table's or an RKN pair's at fixed steps of dt are located on the
 // cubic Hermite interpolant, a pair's controlled to `tolerance` (absolute =
-// relative; dt its first trial step) on the pair's own interpolation. Any
-// other kind the generic path runs (compensated and extrapolated tables,
-// processed, LogH with dt its fictitious step, classic steppers, Gauss, Tao,
-// semiexplicit, Odeint at `tolerance`) is run by `run`, observed at every step in physical
-// time (run_request::each_step), its events located on the cubic Hermite
-// interpolant between those steps. Each g is called on the stacked state,
+// relative; dt its first trial step) on the pair's own interpolation; any
+// other kind through events_by_run. Each g is called on the stacked state,
 // which costs a copy a call; g is the user's (a Python callable, say),
 // which costs more.
 events_function events_of(erased_separable sys, run_function run) {
-    return [sys = std::move(sys), run = std::move(run)](const method_spec& m, double dt, double tolerance, double t0, double t_end,
-                                  const std::vector<double>& x0, const std::vector<event_spec>& specs) {
-        using S = state_of<Eigen::Dynamic>;
+    return [sys = std::move(sys), run = std::move(run)](const method_spec& m, double dt, double tolerance, double t0,
+                                                        double t_end, const std::vector<double>& x0,
+                                                        const std::vector<event_spec>& specs) {
+        using S = events_state;
         std::vector<event<S>> events;
         for (const event_spec& e : specs)
             // g by reference: `specs` outlives the run, and a copy of a
@@ -63,36 +104,7 @@ events_function events_of(erased_separable sys, run_function run) {
                 case rkn_pair::dprkn12: return with_pair(dprkn12{});
             }
         }
-        if (!generic_kinds().has(m.kind))
-            throw invalid_argument("events method '" + printable(m.name) + "' (" + entry_of(m.kind).label +
-                                   "): its runs are not offered with events; expected a method of another kind (a "
-                                   "table, a processed method, an RKN pair, LogH, Gauss, Tao, semiexplicit, a "
-                                   "classic or an Odeint stepper)");
-        step_interpolant<erased_separable, S> dense(sys, hermite_order::cubic);
-        run_summary summary;  // steps observed so far
-        const auto drive = [&](auto& observer) {
-            run_request rq;
-            rq.dt = dt;
-            rq.tolerance = tolerance;
-            rq.timing_repeats = 0;
-            rq.energy = true;  // blow-up told as run() tells it (relative energy error > divergence_limit)
-            bool first = true;
-            S y = x;
-            rq.each_step = [&](double t, const std::vector<double>& state) {
-                y = from_stacked<S>(state);
-                if (!std::exchange(first, false)) ++summary.steps;
-                observer(std::as_const(y), t);
-            };
-            const run_result r = run(m, rq, t0, t_end, x0);
-            if (!r.stable) throw integration_error(r.failure, r.blowup_step, r.blowup_time);
-            x = from_stacked<S>(r.final_state);
-            summary.t = t_end;
-            summary.force_evaluations = r.force_evaluations;
-            return summary;
-        };
-        const auto stopped = [&](std::size_t) { return summary; };
-        return outcome_of(
-            sympl::detail::locate_events<dense_summary>(dense, x, events, event_options{}, "events", drive, stopped));
+        return outcome_of(events_by_run(sys, run, m, dt, tolerance, t0, t_end, x0, x, events));
     };
 }
 
