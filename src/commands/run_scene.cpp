@@ -104,6 +104,16 @@ fs::path checkpoint_trajectory_file(const scene& s, const scene_method& m) {
     return checkpoint_file(s, m).string() + ".trajectory";
 }
 
+// A checkpoint's trajectory is written in place: one that is a symlink
+// (planted there) is refused, never written through.
+void refuse_planted_symlink(const scene& s, const fs::path& file) {
+    std::error_code ec;
+    if (fs::is_symlink(file, ec))
+        throw error(printable(s.source) + ": checkpoint trajectory " + printable(file.string()) +
+                    " is a symlink; expected a file this program made there (or none): it writes no file through a "
+                    "symlink; remove it");
+}
+
 // One method's checkpoints: FILE.<method> and, when the scene writes a
 // trajectory, the rows so far in FILE.<method>.trajectory (the checkpoint
 // records how many bytes of it belong to the run).
@@ -125,11 +135,7 @@ public:
         // Written only as a file this program made: never through a symlink
         // (a planted one would have its target overwritten), resumed only
         // from a regular file.
-        std::error_code link;
-        if (fs::is_symlink(trajectory_file_, link))
-            throw error("checkpoint trajectory " + printable(trajectory_file_.string()) +
-                        " is a symlink; expected a file this program made there (or none): it writes no file through "
-                        "a symlink; remove it");
+        refuse_planted_symlink(s, trajectory_file_);
         if (from_) {
             std::error_code ec;
             const auto size = fs::file_size(trajectory_file_, ec);
@@ -433,12 +439,7 @@ free_space free_space_of(const fs::path& folder) {
 void check_no_planted_symlinks(const scene& s, const run_plan& plan) {
     if (!s.checkpoint.every_steps || !s.output.writes_trajectory()) return;
     for (const planned_run& r : plan.runs) {
-        const fs::path file = checkpoint_trajectory_file(s, *r.method);
-        std::error_code ec;
-        if (fs::is_symlink(file, ec))
-            throw error(printable(s.source) + ": checkpoint trajectory " + printable(file.string()) +
-                        " is a symlink; expected a file this program made there (or none): it writes no file "
-                        "through a symlink; remove it");
+        refuse_planted_symlink(s, checkpoint_trajectory_file(s, *r.method));
     }
 }
 
